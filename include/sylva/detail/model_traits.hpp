@@ -1,0 +1,74 @@
+#pragma once
+// IWYU pragma: private
+/// @file
+/// Compile-time detection of the optional parts of models, and the dispatch the filter uses:
+/// analytic Jacobian if the model has one, automatic differentiation otherwise; the model's
+/// own residual (angle wrapping) if it has one, plain subtraction otherwise; a
+/// parametrization's `normalize` if it has one.
+
+#include <type_traits>
+#include <utility>
+
+#include "sylva/core/jacobian_ref.hpp"
+#include "sylva/core/types.hpp"
+#include "sylva/diff/auto_diff.hpp"
+
+namespace sylva::detail {
+
+template <typename Model, typename = void>
+struct HasAnalyticJacobians : std::false_type {};
+template <typename Model>
+struct HasAnalyticJacobians<
+    Model,
+    std::void_t<decltype(std::declval<const Model&>()(
+        std::declval<const Vec<Model::Robot::kDim>&>(),
+        std::declval<const Vec<Model::Landmark::kDim>&>(),
+        std::declval<JacobianRef<Model::kDim, Model::Robot::kDim>>(),
+        std::declval<JacobianRef<Model::kDim, Model::Landmark::kDim>>()))>> : std::true_type {};
+
+template <typename Model, typename = void>
+struct HasResidual : std::false_type {};
+template <typename Model>
+struct HasResidual<Model,
+                   std::void_t<decltype(std::declval<const Model&>().residual(
+                       std::declval<const Vec<Model::kDim>&>(),
+                       std::declval<const Vec<Model::kDim>&>()))>> : std::true_type {};
+
+template <typename Param, typename = void>
+struct HasNormalize : std::false_type {};
+template <typename Param>
+struct HasNormalize<Param,
+                    std::void_t<decltype(Param::normalize(
+                        std::declval<Eigen::Ref<Vec<Param::kDim>>>()))>> : std::true_type {};
+
+/// z_hat = h(robot, landmark) and, when requested, its two Jacobians.
+template <typename Model>
+Vec<Model::kDim> evaluate(const Model& model,
+                          const Vec<Model::Robot::kDim>& robot,
+                          const Vec<Model::Landmark::kDim>& landmark,
+                          JacobianRef<Model::kDim, Model::Robot::kDim> J_z_x,
+                          JacobianRef<Model::kDim, Model::Landmark::kDim> J_z_l) {
+  if constexpr (HasAnalyticJacobians<Model>::value) {
+    return model(robot, landmark, J_z_x, J_z_l);
+  } else {
+    return AutoDiff<Model>(model)(robot, landmark, J_z_x, J_z_l);
+  }
+}
+
+/// The innovation z - z_hat, through the model's own `residual` when it has one.
+template <typename Model>
+Vec<Model::kDim> residual(const Model& model, const Vec<Model::kDim>& z, const Vec<Model::kDim>& z_hat) {
+  if constexpr (HasResidual<Model>::value) {
+    return model.residual(z, z_hat);
+  } else {
+    return z - z_hat;
+  }
+}
+
+/// Brings a block back to its canonical range (angles wrapped, ...) if the type says how.
+template <typename Param, typename Block>
+void normalize(Block&& block) {
+  if constexpr (HasNormalize<Param>::value) Param::normalize(block);
+}
+
+}  // namespace sylva::detail

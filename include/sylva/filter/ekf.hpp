@@ -1,0 +1,684 @@
+#pragma once
+/// @file
+/// `sylva::Ekf<Robot, Landmarks...>`: one extended Kalman filter for every robot, landmark
+/// parametrization and sensor.
+///
+/// State: the robot block (`Robot::kDim`, offset 0) followed by landmark slots. Each slot has
+/// a user id and a parametrization out of `Landmarks...` (a runtime tag out of a compile-time
+/// list), so a map can hold e.g. inverse-depth points, XYZ points and trees side by side.
+/// Every kernel works on fixed-size blocks whose sizes come from the types.
+///
+/// Complexity (n = state dimension, m = measurement dimension):
+///   predict            O(n)      robot block and its cross-covariances (eq. 2.27)
+///   update             O(n^2 m)  H is non-zero only in the robot block and one landmark block
+///   add                O(n)      augmentation of eq. 2.33-2.39 (amortized: storage doubles)
+///   remove             O(n^2)    rows and columns are moved up
+///   reparametrize      O(n^2)    covariance carried through the conversion's Jacobian
+///
+/// Storage: the covariance lives in a capacity x capacity column-major matrix of which the
+/// top-left n x n corner is in use and only its lower triangle is authoritative. Nothing is
+/// allocated by `predict` or `update` once the workspace has seen the largest state.
+///
+/// Errors: every operation validates its input and computes everything that can fail before
+/// it writes a member, so a thrown `sylva::Error` leaves mean and covariance bit-identical.
+
+#include <Eigen/Cholesky>
+#include <Eigen/Core>
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <sstream>
+#include <string>
+#include <type_traits>
+#include <unordered_map>
+#include <vector>
+
+#include "sylva/core/error.hpp"
+#include "sylva/core/jacobian_ref.hpp"
+#include "sylva/core/types.hpp"
+#include "sylva/detail/model_traits.hpp"
+#include "sylva/filter/linearization.hpp"
+#include "sylva/filter/update_form.hpp"
+#include "sylva/noise/gaussian.hpp"
+
+namespace sylva {
+
+/// One observation for a batched update: which landmark, what was measured, how noisy.
+template <typename Model>
+struct Observation {
+  Id id;
+  Vec<Model::kDim> z;
+  Gaussian<Model::kDim> noise;
+};
+
+/// Where a landmark lives in the state.
+struct LandmarkSlot {
+  Id id;
+  int type_index;  ///< index into the filter's `Landmarks...`
+  int offset;      ///< first row of the block in the state
+  int dim;         ///< block size
+};
+
+template <typename UpdateForm_, typename Robot_, typename... Landmarks_>
+class BasicEkf {
+  static_assert(sizeof...(Landmarks_) >= 1, "Ekf needs at least one landmark parametrization");
+  static_assert(Robot_::kDim > 0, "Robot must define `static constexpr int kDim` > 0");
+
+ public:
+  using UpdateForm = UpdateForm_;
+  using Robot = Robot_;
+  static constexpr int kRobotDim = Robot::kDim;
+  static constexpr int kControlDim = Robot::kControlDim;
+  static constexpr int kNoiseDim = Robot::kNoiseDim;
+  using RobotState = Vec<kRobotDim>;
+  using RobotCovariance = Mat<kRobotDim, kRobotDim>;
+  using Control = Vec<kControlDim>;
+
+  /// True when `Landmark` is one of the filter's parametrizations.
+  template <typename Landmark>
+  static constexpr bool kHolds = (std::is_same_v<Landmark, Landmarks_> || ...);
+
+  /// Position of `Landmark` in `Landmarks...` (compile error if absent).
+  template <typename Landmark>
+  static constexpr int typeIndexOf() {
+    static_assert(kHolds<Landmark>,
+                  "this landmark parametrization is not in the filter's Landmarks... list");
+    constexpr bool matches[] = {std::is_same_v<Landmark, Landmarks_>...};
+    for (int i = 0; i < static_cast<int>(sizeof...(Landmarks_)); ++i)
+      if (matches[i]) return i;
+    return -1;
+  }
+
+  /// Name of the parametrization with the given type index.
+  static const char* typeName(int type_index) {
+    static constexpr const char* names[] = {Landmarks_::kName...};
+    return names[type_index];
+  }
+
+  /// Starts the filter with the robot's prior. `P0` must be symmetric positive
+  /// semi-definite (a zero matrix is fine: "the robot starts at the origin of the map").
+  BasicEkf(const RobotState& x0, const RobotCovariance& P0, Robot robot = Robot())
+      : robot_(robot) {
+    if (!x0.allFinite()) fail(ErrorCode::kNonFinite, "Ekf: initial robot state is not finite");
+    checkCovariance(P0, "Ekf: initial robot covariance");
+    reserve(0);
+    mean_.template head<kRobotDim>() = x0;
+    cov_.template topLeftCorner<kRobotDim, kRobotDim>() = 0.5 * (P0 + P0.transpose());
+    n_ = kRobotDim;
+  }
+
+  /// Pre-allocates storage for landmarks totalling `landmark_dims` state entries so that
+  /// later `add` calls do not reallocate.
+  void reserve(int landmark_dims) { ensureCapacity(kRobotDim + std::max(0, landmark_dims)); }
+
+  // ---------------------------------------------------------------- access
+
+  /// State dimension n = robot + all landmark blocks.
+  int dim() const { return n_; }
+  int landmarkCount() const { return static_cast<int>(slots_.size()); }
+  const std::vector<LandmarkSlot>& slots() const { return slots_; }
+  bool contains(Id id) const { return index_.count(id) != 0; }
+  const Robot& robot() const { return robot_; }
+
+  /// The slot of `id` (throws kUnknownId).
+  const LandmarkSlot& slot(Id id) const { return slots_[slotIndex(id)]; }
+
+  /// True when `id` exists and is parametrized as `Landmark`.
+  template <typename Landmark>
+  bool holds(Id id) const {
+    const auto it = index_.find(id);
+    return it != index_.end() && slots_[it->second].type_index == typeIndexOf<Landmark>();
+  }
+
+  RobotState robotMean() const { return mean_.template head<kRobotDim>(); }
+  RobotCovariance robotCovariance() const { return symmetricBlock<kRobotDim, kRobotDim>(0, 0); }
+
+  /// Mean of landmark `id`, which must be parametrized as `Landmark` (else kWrongLandmarkType).
+  template <typename Landmark>
+  Vec<Landmark::kDim> landmarkMean(Id id) const {
+    const LandmarkSlot& s = typedSlot<Landmark>(id, "landmarkMean");
+    return mean_.template segment<Landmark::kDim>(s.offset);
+  }
+
+  /// Marginal covariance of landmark `id`.
+  template <typename Landmark>
+  Mat<Landmark::kDim, Landmark::kDim> landmarkCovariance(Id id) const {
+    const LandmarkSlot& s = typedSlot<Landmark>(id, "landmarkCovariance");
+    return symmetricBlock<Landmark::kDim, Landmark::kDim>(s.offset, s.offset);
+  }
+
+  /// Cross-covariance between the robot and landmark `id`.
+  template <typename Landmark>
+  Mat<kRobotDim, Landmark::kDim> robotLandmarkCovariance(Id id) const {
+    const LandmarkSlot& s = typedSlot<Landmark>(id, "robotLandmarkCovariance");
+    return symmetricBlock<kRobotDim, Landmark::kDim>(0, s.offset);
+  }
+
+  /// Copy of the whole mean (n).
+  Eigen::VectorXd mean() const { return mean_.head(n_); }
+
+  /// Copy of the whole covariance (n x n, both triangles filled).
+  Eigen::MatrixXd covariance() const {
+    Eigen::MatrixXd full = cov_.topLeftCorner(n_, n_).template selfadjointView<Eigen::Lower>();
+    return full;
+  }
+
+  // ---------------------------------------------------------------- predict
+
+  /// Moves the robot by `u` over `dt` seconds with control noise `noise` (eq. 2.22-2.27):
+  /// only the robot block and its cross-covariances change, O(n).
+  void predict(const Control& u, double dt, const Gaussian<kNoiseDim>& noise) {
+    if (!std::isfinite(dt)) fail(ErrorCode::kNonFinite, "Ekf::predict: dt is not finite");
+    if (dt < 0.0) {
+      std::ostringstream os;
+      os << "Ekf::predict: dt = " << dt << " s is negative";
+      fail(ErrorCode::kNegativeTimeStep, os.str());
+    }
+    if (!u.allFinite()) fail(ErrorCode::kNonFinite, "Ekf::predict: control is not finite");
+    Mat<kRobotDim, kRobotDim> F;
+    Mat<kRobotDim, kNoiseDim> G;
+    const RobotState next = robot_(robotMean(), u, dt, F, G);
+    if (!next.allFinite() || !F.allFinite() || !G.allFinite())
+      fail(ErrorCode::kNonFinite, "Ekf::predict: motion model produced a non-finite state or Jacobian");
+
+    const RobotCovariance P_rr = robotCovariance();
+    RobotCovariance P_rr_next = F * P_rr * F.transpose() + G * noise.covariance() * G.transpose();
+    // From here on nothing can fail.
+    mean_.template head<kRobotDim>() = next;
+    cov_.template topLeftCorner<kRobotDim, kRobotDim>() = 0.5 * (P_rr_next + P_rr_next.transpose());
+    const int m = n_ - kRobotDim;
+    if (m > 0) {
+      // Lower storage holds P_mr (m x r); P_mr <- P_mr F^T  (eq. 2.27).
+      for (int row = kRobotDim; row < n_; ++row) {
+        const Vec<kRobotDim> p = cov_.row(row).template head<kRobotDim>().transpose();
+        cov_.row(row).template head<kRobotDim>() = (F * p).transpose();
+      }
+    }
+  }
+
+  // ---------------------------------------------------------------- update
+
+  /// Fuses one observation `z` of landmark `id` through `model`, with measurement noise
+  /// `noise`. The model's landmark type must be in `Landmarks...` (compile time) and match
+  /// the slot (runtime, kWrongLandmarkType). Returns the innovation used.
+  template <typename Model>
+  Innovation<Model::kDim> update(const Model& model,
+                                 Id id,
+                                 const Vec<Model::kDim>& z,
+                                 const Gaussian<Model::kDim>& noise) {
+    checkModel<Model>();
+    constexpr int M = Model::kDim;
+    if (!z.allFinite()) fail(ErrorCode::kNonFinite, nameOf<Model>() + ": measurement is not finite");
+    const Linearization<Model> lin = linearize(model, id);
+    const Vec<M> nu = detail::residual(model, z, lin.z_hat);
+    if (!nu.allFinite()) fail(ErrorCode::kNonFinite, nameOf<Model>() + ": innovation is not finite");
+
+    auto PHt = workspaceMatrix<M>(0);
+    PHt.setZero();
+    accumulateCovarianceTimesHt<Model>(lin, PHt, 0);
+    Mat<M, M> S = lin.J_z_x * PHt.template topRows<kRobotDim>() +
+                  lin.J_z_l * PHt.template middleRows<Model::Landmark::kDim>(lin.landmark_offset) +
+                  noise.covariance();
+    S = (0.5 * (S + S.transpose())).eval();
+    Eigen::LLT<Mat<M, M>> llt(S);
+    if (llt.info() != Eigen::Success || !S.allFinite())
+      fail(ErrorCode::kNotPositiveDefinite,
+           nameOf<Model>() + ": innovation covariance S is not positive definite (landmark " +
+               std::to_string(id) + ")");
+    // From here on nothing can fail.
+    applyGain<M>(PHt, llt, nu, noise.covariance(), [&](const auto& A, auto&& out) {
+      out.noalias() = A.template middleCols<kRobotDim>(0) * lin.J_z_x.transpose();
+      out.noalias() +=
+          A.template middleCols<Model::Landmark::kDim>(lin.landmark_offset) * lin.J_z_l.transpose();
+    });
+    return Innovation<M>{nu, S};
+  }
+
+  /// Fuses several observations through one model in a single update (the stacked H of all
+  /// of them, one pass over P). Ids may repeat only if the caller means it (two
+  /// independent measurements of the same landmark).
+  template <typename Model, typename ObservationRange>
+  void update(const Model& model, const ObservationRange& observations) {
+    checkModel<Model>();
+    constexpr int M = Model::kDim;
+    const int k = static_cast<int>(std::size(observations));
+    if (k == 0) return;
+    const int total = k * M;
+    std::vector<Linearization<Model>> lins;  // k small blocks; the batch path may allocate
+    lins.reserve(static_cast<std::size_t>(k));
+    Eigen::VectorXd& nu = batch_nu_;
+    nu.resize(total);  // no reallocation once the largest batch has been seen
+    int i = 0;
+    for (const Observation<Model>& obs : observations) {
+      if (!obs.z.allFinite())
+        fail(ErrorCode::kNonFinite, nameOf<Model>() + ": measurement " + std::to_string(i) +
+                                        " of the batch is not finite");
+      lins.push_back(linearize(model, obs.id));
+      nu.template segment<M>(i * M) = detail::residual(model, obs.z, lins.back().z_hat);
+      ++i;
+    }
+    if (!nu.allFinite()) fail(ErrorCode::kNonFinite, nameOf<Model>() + ": innovation is not finite");
+
+    auto PHt = workspaceMatrix<Eigen::Dynamic>(total);
+    PHt.setZero();
+    for (int a = 0; a < k; ++a) accumulateCovarianceTimesHt<Model>(lins[a], PHt, a * M);
+    Eigen::MatrixXd& S = batch_S_;
+    S.resize(total, total);
+    for (int a = 0; a < k; ++a) {
+      for (int b = 0; b <= a; ++b) {
+        const auto col = PHt.middleCols(b * M, M);
+        S.block(a * M, b * M, M, M).noalias() =
+            lins[a].J_z_x * col.template topRows<kRobotDim>() +
+            lins[a].J_z_l * col.template middleRows<Model::Landmark::kDim>(lins[a].landmark_offset);
+      }
+    }
+    i = 0;
+    for (const Observation<Model>& obs : observations) {
+      S.block(i * M, i * M, M, M) += obs.noise.covariance();
+      ++i;
+    }
+    S.template triangularView<Eigen::StrictlyUpper>() = S.transpose();
+    Eigen::LLT<Eigen::MatrixXd>& llt = batch_llt_;
+    llt.compute(S);
+    if (llt.info() != Eigen::Success || !S.allFinite())
+      fail(ErrorCode::kNotPositiveDefinite,
+           nameOf<Model>() + ": batched innovation covariance is not positive definite");
+    Eigen::MatrixXd& R = batch_R_;
+    R.setZero(total, total);
+    i = 0;
+    for (const Observation<Model>& obs : observations) {
+      R.block(i * M, i * M, M, M) = obs.noise.covariance();
+      ++i;
+    }
+    applyGain<Eigen::Dynamic>(PHt, llt, nu, R, [&](const auto& A, auto&& out) {
+      for (int a = 0; a < k; ++a) {
+        out.middleCols(a * M, M).noalias() = A.template middleCols<kRobotDim>(0) * lins[a].J_z_x.transpose();
+        out.middleCols(a * M, M).noalias() +=
+            A.template middleCols<Model::Landmark::kDim>(lins[a].landmark_offset) *
+            lins[a].J_z_l.transpose();
+      }
+    });
+  }
+
+  // ---------------------------------------------------------------- gating helpers
+
+  /// h(x) and the two non-zero blocks of H for landmark `id` at the current estimate.
+  template <typename Model>
+  Linearization<Model> linearize(const Model& model, Id id) const {
+    checkModel<Model>();
+    const LandmarkSlot& s = typedSlot<typename Model::Landmark>(id, nameOf<Model>());
+    Linearization<Model> lin;
+    lin.landmark_offset = s.offset;
+    lin.z_hat = detail::evaluate(model, robotMean(),
+                                 Vec<Model::Landmark::kDim>(
+                                     mean_.template segment<Model::Landmark::kDim>(s.offset)),
+                                 lin.J_z_x, lin.J_z_l);
+    if (!lin.z_hat.allFinite() || !lin.J_z_x.allFinite() || !lin.J_z_l.allFinite())
+      fail(ErrorCode::kNonFinite, nameOf<Model>() + ": prediction or Jacobian is not finite for landmark " +
+                                      std::to_string(id));
+    return lin;
+  }
+
+  /// H_a P H_b^T for two linearizations (the cross term of a joint innovation covariance).
+  template <typename ModelA, typename ModelB>
+  Mat<ModelA::kDim, ModelB::kDim> crossCovariance(const Linearization<ModelA>& a,
+                                                   const Linearization<ModelB>& b) const {
+    constexpr int La = ModelA::Landmark::kDim;
+    constexpr int Lb = ModelB::Landmark::kDim;
+    const auto P_rr = symmetricBlock<kRobotDim, kRobotDim>(0, 0);
+    const auto P_rb = symmetricBlock<kRobotDim, Lb>(0, b.landmark_offset);
+    const auto P_ar = symmetricBlock<La, kRobotDim>(a.landmark_offset, 0);
+    const auto P_ab = symmetricBlock<La, Lb>(a.landmark_offset, b.landmark_offset);
+    return a.J_z_x * (P_rr * b.J_z_x.transpose() + P_rb * b.J_z_l.transpose()) +
+           a.J_z_l * (P_ar * b.J_z_x.transpose() + P_ab * b.J_z_l.transpose());
+  }
+
+  /// Innovation and its covariance S = H P H^T + R for a candidate pairing, without
+  /// changing the filter (for gating and nearest-neighbour association).
+  template <typename Model>
+  Innovation<Model::kDim> innovation(const Model& model,
+                                     Id id,
+                                     const Vec<Model::kDim>& z,
+                                     const Gaussian<Model::kDim>& noise) const {
+    const Linearization<Model> lin = linearize(model, id);
+    Innovation<Model::kDim> result;
+    result.nu = detail::residual(model, z, lin.z_hat);
+    result.S = crossCovariance(lin, lin) + noise.covariance();
+    result.S = (0.5 * (result.S + result.S.transpose())).eval();
+    return result;
+  }
+
+  // ---------------------------------------------------------------- map management
+
+  /// Adds landmark `id` from its first observation `z` through the inverse model
+  /// (augmentation, eq. 2.33-2.39): the new block's cross-covariances are J_l_x P_r* and its
+  /// covariance J_l_x P_rr J_l_x^T + J_l_z R J_l_z^T. O(n).
+  template <typename InverseModel>
+  void add(Id id,
+           const InverseModel& inverse,
+           const Vec<InverseModel::kMeasurementDim>& z,
+           const Gaussian<InverseModel::kMeasurementDim>& noise) {
+    using Landmark = typename InverseModel::Landmark;
+    constexpr int L = Landmark::kDim;
+    constexpr int Z = InverseModel::kMeasurementDim;
+    static_assert(kHolds<Landmark>,
+                  "the inverse model's Landmark type is not in the filter's Landmarks... list");
+    static_assert(std::is_same_v<typename InverseModel::Robot, Robot>,
+                  "the inverse model is written for another robot type");
+    if (contains(id))
+      fail(ErrorCode::kDuplicateId, std::string(InverseModel::kName) + ": landmark id " +
+                                        std::to_string(id) + " already exists");
+    if (!z.allFinite()) fail(ErrorCode::kNonFinite, std::string(InverseModel::kName) + ": measurement is not finite");
+    Mat<L, kRobotDim> J_l_x;
+    Mat<L, Z> J_l_z;
+    const Vec<L> l = inverse(robotMean(), z, J_l_x, J_l_z);
+    if (!l.allFinite() || !J_l_x.allFinite() || !J_l_z.allFinite())
+      fail(ErrorCode::kNonFinite, std::string(InverseModel::kName) + ": initialization is not finite");
+    const RobotCovariance P_rr = robotCovariance();
+    Mat<L, L> P_ll = J_l_x * P_rr * J_l_x.transpose() + J_l_z * noise.covariance() * J_l_z.transpose();
+    P_ll = (0.5 * (P_ll + P_ll.transpose())).eval();
+
+    ensureCapacity(n_ + L);  // may allocate; the filter is unchanged if it throws
+    // From here on nothing can fail.
+    const int off = n_;
+    mean_.template segment<L>(off) = l;
+    detail::normalize<Landmark>(mean_.template segment<L>(off));
+    // New rows (lower storage): [J_l_x P_rr, J_l_x P_rm]    (eq. 2.39, bottom row)
+    cov_.template block<L, kRobotDim>(off, 0).noalias() = J_l_x * P_rr;
+    const int m = n_ - kRobotDim;
+    if (m > 0) {
+      cov_.block(off, kRobotDim, L, m).noalias() =
+          J_l_x * cov_.block(kRobotDim, 0, m, kRobotDim).transpose();
+    }
+    cov_.template block<L, L>(off, off) = P_ll;
+    n_ += L;
+    index_.emplace(id, slots_.size());
+    slots_.push_back(LandmarkSlot{id, typeIndexOf<Landmark>(), off, L});
+  }
+
+  /// Removes landmark `id`: its rows and columns leave the state. O(n^2) (moves).
+  void remove(Id id) {
+    const std::size_t k = slotIndex(id);
+    const LandmarkSlot s = slots_[k];
+    eraseBlock(s.offset, s.dim);
+    index_.erase(id);
+    slots_.erase(slots_.begin() + static_cast<std::ptrdiff_t>(k));
+    for (std::size_t j = k; j < slots_.size(); ++j) {
+      slots_[j].offset -= s.dim;
+      index_[slots_[j].id] = j;
+    }
+  }
+
+  /// Changes the parametrization of landmark `id` from `Conversion::From` to
+  /// `Conversion::To`. The conversion maps (robot, landmark) to the new landmark with
+  /// Jacobians J_to_x and J_to_l; the covariance is carried through them:
+  ///   P_new,c = J_to_x P_r,c + J_to_l P_l,c   for every other block c,
+  ///   P_new,new = [J_to_x J_to_l] P_(r,l),(r,l) [J_to_x J_to_l]^T.
+  /// The landmark keeps its id; its block moves to the end of the state.
+  template <typename Conversion>
+  void reparametrize(Id id, const Conversion& conversion) {
+    using From = typename Conversion::From;
+    using To = typename Conversion::To;
+    constexpr int Lf = From::kDim;
+    constexpr int Lt = To::kDim;
+    static_assert(kHolds<From> && kHolds<To>,
+                  "both parametrizations of the conversion must be in the filter's Landmarks... list");
+    const std::size_t k = slotIndex(id);
+    const LandmarkSlot s = typedSlot<From>(id, Conversion::kName);
+    Mat<Lt, kRobotDim> J_x;
+    Mat<Lt, Lf> J_l;
+    const Vec<Lf> old_mean = mean_.template segment<Lf>(s.offset);
+    const Vec<Lt> new_mean = conversion(robotMean(), old_mean, J_x, J_l);
+    if (!new_mean.allFinite() || !J_x.allFinite() || !J_l.allFinite())
+      fail(ErrorCode::kNonFinite, std::string(Conversion::kName) + ": conversion is not finite");
+
+    // New block rows against every other column of the state, before anything moves.
+    const int rest = n_ - Lf;  // dimension of the state without the old block
+    Eigen::MatrixXd cross(Lt, rest);  // allocation: reparametrization is not a hot path
+    for (int c = 0, dest = 0; c < n_; ++c) {
+      if (c >= s.offset && c < s.offset + Lf) continue;
+      Vec<kRobotDim> p_rc;
+      for (int r = 0; r < kRobotDim; ++r) p_rc[r] = lowerAt(r, c);
+      Vec<Lf> p_lc;
+      for (int r = 0; r < Lf; ++r) p_lc[r] = lowerAt(s.offset + r, c);
+      cross.col(dest++) = J_x * p_rc + J_l * p_lc;
+    }
+    Mat<Lt, kRobotDim + Lf> J;
+    J << J_x, J_l;
+    Mat<kRobotDim + Lf, kRobotDim + Lf> P_joint;
+    P_joint << symmetricBlock<kRobotDim, kRobotDim>(0, 0), symmetricBlock<kRobotDim, Lf>(0, s.offset),
+        symmetricBlock<Lf, kRobotDim>(s.offset, 0), symmetricBlock<Lf, Lf>(s.offset, s.offset);
+    Mat<Lt, Lt> P_new = J * P_joint * J.transpose();
+    P_new = (0.5 * (P_new + P_new.transpose())).eval();
+    if (Lt > Lf) ensureCapacity(n_ - Lf + Lt);
+    // From here on nothing can fail.
+    eraseBlock(s.offset, Lf);
+    slots_.erase(slots_.begin() + static_cast<std::ptrdiff_t>(k));
+    for (std::size_t j = k; j < slots_.size(); ++j) {
+      slots_[j].offset -= Lf;
+      index_[slots_[j].id] = j;
+    }
+    const int off = n_;
+    mean_.template segment<Lt>(off) = new_mean;
+    detail::normalize<To>(mean_.template segment<Lt>(off));
+    cov_.block(off, 0, Lt, rest) = cross;
+    cov_.template block<Lt, Lt>(off, off) = P_new;
+    n_ += Lt;
+    index_[id] = slots_.size();
+    slots_.push_back(LandmarkSlot{id, typeIndexOf<To>(), off, Lt});
+  }
+
+ private:
+  // ---------------------------------------------------------------- checks
+
+  template <typename Model>
+  static constexpr void checkModel() {
+    static_assert(Model::kDim > 0, "Measurement model must define `static constexpr int kDim` > 0");
+    static_assert(std::is_same_v<typename Model::Robot, Robot>,
+                  "Measurement model's `Robot` type is not the filter's robot");
+    static_assert(kHolds<typename Model::Landmark>,
+                  "Measurement model's `Landmark` type is not in the filter's Landmarks... list");
+  }
+
+  template <typename T>
+  static std::string nameOf() {
+    return std::string(T::kName);
+  }
+
+  template <int R>
+  static void checkCovariance(const Mat<R, R>& P, const char* what) {
+    if (!P.allFinite()) fail(ErrorCode::kNonFinite, std::string(what) + " is not finite");
+    const double scale = std::max(1.0, P.cwiseAbs().maxCoeff());
+    if ((P - P.transpose()).cwiseAbs().maxCoeff() > 1e-9 * scale)
+      fail(ErrorCode::kInvalidArgument, std::string(what) + " is not symmetric");
+    Eigen::SelfAdjointEigenSolver<Mat<R, R>> eig(0.5 * (P + P.transpose()), Eigen::EigenvaluesOnly);
+    if (eig.eigenvalues().minCoeff() < -1e-12 * scale)
+      fail(ErrorCode::kNotPositiveDefinite, std::string(what) + " is not positive semi-definite");
+  }
+
+  std::size_t slotIndex(Id id) const {
+    const auto it = index_.find(id);
+    if (it == index_.end()) fail(ErrorCode::kUnknownId, "no landmark with id " + std::to_string(id));
+    return it->second;
+  }
+
+  template <typename Landmark>
+  const LandmarkSlot& typedSlot(Id id, const std::string& who) const {
+    const LandmarkSlot& s = slots_[slotIndex(id)];
+    if (s.type_index != typeIndexOf<Landmark>())
+      fail(ErrorCode::kWrongLandmarkType, who + ": landmark " + std::to_string(id) + " is a " +
+                                              typeName(s.type_index) + ", not a " + Landmark::kName);
+    return s;
+  }
+
+  // ---------------------------------------------------------------- storage
+
+  /// P(i, j) read from the authoritative lower triangle.
+  double lowerAt(int i, int j) const { return i >= j ? cov_(i, j) : cov_(j, i); }
+
+  /// The R x C block of the full symmetric P starting at (row, col), for blocks that are
+  /// either on the diagonal or entirely off it.
+  template <int R, int C>
+  Mat<R, C> symmetricBlock(int row, int col) const {
+    if (row == col && R == C) {
+      Mat<R, C> out;
+      for (int j = 0; j < C; ++j)
+        for (int i = 0; i < R; ++i) out(i, j) = lowerAt(row + i, col + j);
+      return out;
+    }
+    if (row >= col + C) return cov_.template block<R, C>(row, col);
+    return cov_.template block<C, R>(col, row).transpose();
+  }
+
+  void ensureCapacity(int needed) {
+    if (needed <= capacity_) return;
+    const int capacity = std::max(needed, 2 * capacity_);
+    Eigen::VectorXd mean = Eigen::VectorXd::Zero(capacity);
+    Eigen::MatrixXd cov = Eigen::MatrixXd::Zero(capacity, capacity);
+    mean.head(n_) = mean_.head(n_);
+    cov.topLeftCorner(n_, n_).template triangularView<Eigen::Lower>() =
+        cov_.topLeftCorner(n_, n_);
+    mean_.swap(mean);
+    cov_.swap(cov);
+    capacity_ = capacity;
+  }
+
+  /// Deletes rows and columns [off, off + d) from mean and lower-triangular covariance.
+  void eraseBlock(int off, int d) {
+    const int tail = n_ - off - d;
+    if (tail > 0) {
+      mean_.segment(off, tail) = mean_.segment(off + d, tail).eval();
+      // Columns left of the block: move their lower rows up by d.
+      for (int j = 0; j < off; ++j) {
+        double* col = cov_.col(j).data();
+        std::copy(col + off + d, col + n_, col + off);
+      }
+      // Columns right of the block: move left by d and up by d.
+      for (int j = off; j < off + tail; ++j) {
+        const double* src = cov_.col(j + d).data() + j + d;
+        double* dst = cov_.col(j).data() + j;
+        std::copy(src, src + (n_ - j - d), dst);
+      }
+    }
+    n_ -= d;
+  }
+
+  /// Workspace view of n_ x cols doubles (cols = M or `dynamic_cols` if M is Dynamic).
+  /// Grows only when a larger state or batch is seen.
+  template <int M>
+  Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, M>> workspaceMatrix(int dynamic_cols) {
+    const int cols = M == Eigen::Dynamic ? dynamic_cols : M;
+    const Eigen::Index needed = static_cast<Eigen::Index>(n_) * cols;
+    if (workspace_a_.size() < needed) workspace_a_.resize(needed);
+    return Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, M>>(workspace_a_.data(), n_, cols);
+  }
+
+  template <int M>
+  Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, M>> secondWorkspace(int cols) {
+    const Eigen::Index needed = static_cast<Eigen::Index>(n_) * cols;
+    if (workspace_b_.size() < needed) workspace_b_.resize(needed);
+    return Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, M>>(workspace_b_.data(), n_, cols);
+  }
+
+  /// out(:, col0 .. col0 + m) += P H^T for one linearization, reading the robot and landmark
+  /// columns of P from the lower triangle in three pieces each. O(n m).
+  template <typename Model, typename Out>
+  void accumulateCovarianceTimesHt(const Linearization<Model>& lin, Out& out, int col0) const {
+    constexpr int M = Model::kDim;
+    constexpr int L = Model::Landmark::kDim;
+    auto dest = out.template middleCols<M>(col0);
+    // Robot columns of P (offset 0): rows [0, r) are the robot block, rows [r, n) are stored.
+    dest.template topRows<kRobotDim>().noalias() +=
+        symmetricBlock<kRobotDim, kRobotDim>(0, 0) * lin.J_z_x.transpose();
+    const int below_robot = n_ - kRobotDim;
+    dest.bottomRows(below_robot).noalias() +=
+        cov_.block(kRobotDim, 0, below_robot, kRobotDim) * lin.J_z_x.transpose();
+    // Landmark columns of P at offset o: rows [0, o) are the transposed stored row block,
+    // rows [o, o + L) the diagonal block, rows [o + L, n) are stored.
+    const int o = lin.landmark_offset;
+    dest.topRows(o).noalias() += cov_.block(o, 0, L, o).transpose() * lin.J_z_l.transpose();
+    dest.template middleRows<L>(o).noalias() += symmetricBlock<L, L>(o, o) * lin.J_z_l.transpose();
+    const int below = n_ - o - L;
+    dest.bottomRows(below).noalias() += cov_.block(o + L, o, below, L) * lin.J_z_l.transpose();
+  }
+
+  /// Applies the gain for P H^T (n x M, overwritten), the Cholesky factor of S, the
+  /// innovation and R. `applyHt(A, out)` writes out = A H^T for an n x n matrix A (needed by
+  /// the Joseph form).
+  template <int M, typename PHtMap, typename Llt, typename Nu, typename RMat, typename ApplyHt>
+  void applyGain(PHtMap& PHt, const Llt& llt, const Nu& nu, const RMat& R, ApplyHt&& applyHt) {
+    auto P = cov_.topLeftCorner(n_, n_);
+    if constexpr (std::is_same_v<UpdateForm, JosephUpdate>) {
+      const int cols = static_cast<int>(PHt.cols());
+      // K = PHt S^-1, kept in the second workspace.
+      auto K = secondWorkspace<M>(cols);
+      K = PHt;
+      llt.matrixU().template solveInPlace<Eigen::OnTheRight>(K);
+      llt.matrixL().template solveInPlace<Eigen::OnTheRight>(K);
+      mean_.head(n_).noalias() += K * nu;
+      // A = (I - K H) P = P - K (P H^T)^T on the full matrix.
+      P.template triangularView<Eigen::StrictlyUpper>() = P.transpose();
+      P.noalias() -= K * PHt.transpose();
+      // B = A H^T, reusing the PHt workspace.
+      applyHt(P, PHt);
+      // P = A - B K^T + K R K^T  ((I - K H) P (I - K H)^T + K R K^T)
+      P.noalias() -= PHt * K.transpose();
+      const Eigen::Matrix<double, M, Eigen::Dynamic> RKt = R * K.transpose();
+      P.noalias() += K * RKt;
+    } else {
+      (void)R;
+      (void)applyHt;
+      // W = PHt L^-T (in place), x += W L^-1 nu, P -= W W^T on the lower triangle.
+      llt.matrixU().template solveInPlace<Eigen::OnTheRight>(PHt);
+      const Eigen::Matrix<double, M, 1> v = llt.matrixL().solve(nu);
+      mean_.head(n_).noalias() += PHt * v;
+      for (int j = 0; j < n_; ++j) {
+        const Eigen::Matrix<double, M, 1> w_j = PHt.row(j).transpose();
+        P.col(j).tail(n_ - j).noalias() -= PHt.bottomRows(n_ - j) * w_j;
+      }
+    }
+    normalizeAll();
+  }
+
+  /// Wraps angles etc. of the robot and of every landmark type that defines `normalize`.
+  void normalizeAll() {
+    detail::normalize<Robot>(mean_.template head<kRobotDim>());
+    constexpr bool any = (detail::HasNormalize<Landmarks_>::value || ...);
+    if constexpr (any) {
+      for (const LandmarkSlot& s : slots_) normalizeSlot(s, std::index_sequence_for<Landmarks_...>());
+    }
+  }
+
+  template <std::size_t... I>
+  void normalizeSlot(const LandmarkSlot& s, std::index_sequence<I...>) {
+    ((s.type_index == static_cast<int>(I)
+          ? detail::normalize<Landmarks_>(mean_.template segment<Landmarks_::kDim>(s.offset))
+          : void()),
+     ...);
+  }
+
+  Robot robot_;
+  int n_ = 0;
+  int capacity_ = 0;
+  Eigen::VectorXd mean_;
+  Eigen::MatrixXd cov_;  // lower triangle of the top-left n_ x n_ corner is authoritative
+  std::vector<LandmarkSlot> slots_;
+  std::unordered_map<Id, std::size_t> index_;
+  Eigen::VectorXd workspace_a_;
+  Eigen::VectorXd workspace_b_;
+  Eigen::VectorXd batch_nu_;
+  Eigen::MatrixXd batch_S_;
+  Eigen::MatrixXd batch_R_;
+  Eigen::LLT<Eigen::MatrixXd> batch_llt_;
+};
+
+/// The filter with the default covariance update (symmetric form, one triangle).
+template <typename Robot, typename... Landmarks>
+using Ekf = BasicEkf<SymmetricUpdate, Robot, Landmarks...>;
+
+/// The filter with the Joseph-form covariance update.
+template <typename Robot, typename... Landmarks>
+using JosephEkf = BasicEkf<JosephUpdate, Robot, Landmarks...>;
+
+}  // namespace sylva

@@ -1,0 +1,34 @@
+#pragma once
+/// @file
+/// Value types the filter hands out for gating and data association: the linearization of
+/// a measurement model at the current estimate, and an innovation with its covariance.
+
+#include <Eigen/Cholesky>
+
+#include "sylva/core/types.hpp"
+
+namespace sylva {
+
+/// h(x) at the current estimate, the two non-zero blocks of H and where they sit in the state.
+template <typename Model>
+struct Linearization {
+  static constexpr int kDim = Model::kDim;
+  static constexpr int kRobotDim = Model::Robot::kDim;
+  static constexpr int kLandmarkDim = Model::Landmark::kDim;
+  Vec<kDim> z_hat;
+  Mat<kDim, kRobotDim> J_z_x;     ///< w.r.t. the robot block (offset 0)
+  Mat<kDim, kLandmarkDim> J_z_l;  ///< w.r.t. the landmark block
+  int landmark_offset = 0;        ///< first row of the landmark block in the state
+};
+
+/// Innovation nu = z - z_hat (through the model's residual) and S = H P H^T + R.
+template <int M>
+struct Innovation {
+  Vec<M> nu;
+  Mat<M, M> S;
+  /// Normalized innovation squared nu^T S^-1 nu (eq. 2.46), the Mahalanobis distance^2 of
+  /// eq. 2.40.
+  double nis() const { return nu.dot(S.llt().solve(nu)); }
+};
+
+}  // namespace sylva

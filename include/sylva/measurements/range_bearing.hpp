@@ -1,0 +1,130 @@
+#pragma once
+/// @file
+/// `RangeBearing`: range and bearing from a `Unicycle2D` robot to a `Point2` landmark
+/// (multisensor thesis, Amarasinghe 2008, eq. 2.15-2.17), and `InverseRangeBearing`, the
+/// landmark initialization from one such measurement (eq. 2.33, 2.37-2.38).
+///
+///   dx = x_l - x_r,  dy = y_l - y_r,  d = sqrt(dx^2 + dy^2)
+///   z  = [ d, wrap(atan2(dy, dx) - theta_r) ]                      (2.16, 2.17)
+///
+/// Jacobians (eq. 2.30; additive perturbations of robot and landmark):
+///
+///   J_z_x (2x3) = [ -dx/d    -dy/d     0 ]     J_z_l (2x2) = [  dx/d    dy/d   ]
+///                 [  dy/d^2  -dx/d^2  -1 ]                   [ -dy/d^2  dx/d^2 ]
+///
+/// (The thesis prints dx/d twice in the landmark columns of the first row; the second is
+/// dy/d, as the derivative shows and the tests check.)
+///
+/// The bearing is wrapped to (-pi, pi] (the thesis states [-pi/2, pi/2] for a forward-looking
+/// sensor; the model itself is defined all around). `residual` wraps the bearing
+/// difference so an innovation never jumps by 2 pi.
+///
+/// Common mistakes: a landmark at the robot's position has no bearing; `RangeBearing`
+/// throws `ErrorCode::kDegenerateGeometry` for d < 1e-9 m rather than return garbage.
+
+#include <cmath>
+#include <sstream>
+
+#include "sylva/core/angles.hpp"
+#include "sylva/core/error.hpp"
+#include "sylva/core/jacobian_ref.hpp"
+#include "sylva/core/scalar.hpp"
+#include "sylva/core/types.hpp"
+#include "sylva/landmarks/point2.hpp"
+#include "sylva/motion/unicycle_2d.hpp"
+
+namespace sylva {
+
+struct RangeBearing {
+  using Robot = Unicycle2D;
+  using Landmark = Point2;
+  static constexpr int kDim = 2;  ///< [range_m, bearing_rad]
+  static constexpr const char* kName = "RangeBearing";
+  /// Below this distance (m) the bearing is undefined.
+  static constexpr double kMinRange = 1e-9;
+
+  /// Predicted [range, bearing] (eq. 2.16-2.17), generic in the scalar for autodiff.
+  template <typename T>
+  Vec<2, T> predict(const Vec<3, T>& robot, const Vec<2, T>& landmark) const {
+    using std::atan2;
+    using std::sqrt;
+    const T dx = landmark[0] - robot[0];
+    const T dy = landmark[1] - robot[1];
+    const T d2 = dx * dx + dy * dy;
+    if (!(scalarValue(d2) >= kMinRange * kMinRange)) {
+      std::ostringstream os;
+      os << "RangeBearing: landmark (" << scalarValue(landmark[0]) << ", "
+         << scalarValue(landmark[1]) << ") coincides with the robot position; bearing undefined";
+      fail(std::isfinite(scalarValue(d2)) ? ErrorCode::kDegenerateGeometry : ErrorCode::kNonFinite,
+           os.str());
+    }
+    Vec<2, T> z;
+    z[0] = sqrt(d2);
+    z[1] = wrapAngle(T(atan2(dy, dx) - robot[2]));
+    return z;
+  }
+
+  /// Prediction with the analytic Jacobians of eq. 2.30.
+  Vec<2> operator()(const Vec<3>& robot,
+                    const Vec<2>& landmark,
+                    JacobianRef<2, 3> J_z_x = {},
+                    JacobianRef<2, 2> J_z_l = {}) const {
+    const Vec<2> z = predict<double>(robot, landmark);
+    const double dx = landmark[0] - robot[0];
+    const double dy = landmark[1] - robot[1];
+    const double d = z[0];
+    const double d2 = d * d;
+    if (J_z_x) {
+      *J_z_x << -dx / d, -dy / d, 0.0,  //
+          dy / d2, -dx / d2, -1.0;
+    }
+    if (J_z_l) {
+      *J_z_l << dx / d, dy / d,  //
+          -dy / d2, dx / d2;
+    }
+    return z;
+  }
+
+  /// Innovation z - z_hat with the bearing difference wrapped to (-pi, pi].
+  Vec<2> residual(const Vec<2>& z, const Vec<2>& z_hat) const {
+    return Vec<2>(z[0] - z_hat[0], wrapAngle(z[1] - z_hat[1]));
+  }
+};
+
+/// Landmark initialization from one range-bearing measurement (eq. 2.33):
+///   l = [x_r + r cos(theta_r + b), y_r + r sin(theta_r + b)]
+/// with `J_l_x` (2x3, eq. 2.37) and `J_l_z` (2x2, eq. 2.38).
+struct InverseRangeBearing {
+  using Robot = Unicycle2D;
+  using Landmark = Point2;
+  static constexpr int kMeasurementDim = 2;
+  static constexpr const char* kName = "InverseRangeBearing";
+
+  Vec<2> operator()(const Vec<3>& robot,
+                    const Vec<2>& z,
+                    JacobianRef<2, 3> J_l_x = {},
+                    JacobianRef<2, 2> J_l_z = {}) const {
+    const double r = z[0];
+    if (!std::isfinite(r) || !std::isfinite(z[1]))
+      fail(ErrorCode::kNonFinite, "InverseRangeBearing: measurement is not finite");
+    if (!(r > 0.0)) {
+      std::ostringstream os;
+      os << "InverseRangeBearing: range " << r << " m must be > 0";
+      fail(ErrorCode::kDegenerateGeometry, os.str());
+    }
+    const double a = robot[2] + z[1];
+    const double c = std::cos(a);
+    const double s = std::sin(a);
+    if (J_l_x) {
+      *J_l_x << 1.0, 0.0, -r * s,  //
+          0.0, 1.0, r * c;
+    }
+    if (J_l_z) {
+      *J_l_z << c, -r * s,  //
+          s, r * c;
+    }
+    return Vec<2>(robot[0] + r * c, robot[1] + r * s);
+  }
+};
+
+}  // namespace sylva

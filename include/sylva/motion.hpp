@@ -1,0 +1,4 @@
+#pragma once
+// IWYU pragma: begin_exports
+#include "sylva/motion/unicycle_2d.hpp"
+// IWYU pragma: end_exports

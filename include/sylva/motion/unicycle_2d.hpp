@@ -1,0 +1,69 @@
+#pragma once
+/// @file
+/// `Unicycle2D`: the differential-drive robot of the multisensor thesis (Amarasinghe 2008,
+/// Sec. 2.1.2), state [x, y, theta] in the world frame, control [v, omega] (m/s, rad/s):
+///
+///   x'     = x + dt v cos(theta + dt omega / 2)        (2.12)
+///   y'     = y + dt v sin(theta + dt omega / 2)        (2.13)
+///   theta' = theta + dt omega                          (2.14)
+///
+/// The noise input is additive noise on the control [v, omega], so the process noise of the
+/// robot block is J_n Sigma_u J_n^T (eq. 2.22, 2.27). theta is kept wrapped to (-pi, pi].
+///
+/// Jacobians: `J_x` (3x3) w.r.t. the state and `J_n` (3x2) w.r.t. the control noise, both
+/// w.r.t. additive (Euclidean) perturbations.
+
+#include <cmath>
+
+#include "sylva/core/angles.hpp"
+#include "sylva/core/jacobian_ref.hpp"
+#include "sylva/core/types.hpp"
+
+namespace sylva {
+
+struct Unicycle2D {
+  static constexpr int kDim = 3;         ///< [x, y, theta]
+  static constexpr int kControlDim = 2;  ///< [v, omega]
+  static constexpr int kNoiseDim = 2;    ///< additive noise on [v, omega]
+  static constexpr const char* kName = "Unicycle2D";
+  using State = Vec<3>;
+  using Control = Vec<2>;
+
+  /// Propagates `x` over `dt` seconds under control `u` (eq. 2.12-2.14).
+  State operator()(const State& x,
+                   const Control& u,
+                   double dt,
+                   JacobianRef<3, 3> J_x = {},
+                   JacobianRef<3, 2> J_n = {}) const {
+    const double v = u[0];
+    const double omega = u[1];
+    const double heading = x[2] + 0.5 * dt * omega;
+    const double c = std::cos(heading);
+    const double s = std::sin(heading);
+    State next;
+    next << x[0] + dt * v * c, x[1] + dt * v * s, wrapAngle(x[2] + dt * omega);
+    if (J_x) {
+      *J_x << 1.0, 0.0, -dt * v * s,  //
+          0.0, 1.0, dt * v * c,       //
+          0.0, 0.0, 1.0;
+    }
+    if (J_n) {
+      *J_n << dt * c, -0.5 * dt * dt * v * s,  //
+          dt * s, 0.5 * dt * dt * v * c,       //
+          0.0, dt;
+    }
+    return next;
+  }
+
+  /// Brings a state back to its canonical range (theta in (-pi, pi]).
+  static void normalize(Eigen::Ref<State> x) { x[2] = wrapAngle(x[2]); }
+
+  /// Difference of two states with the angle wrapped, for errors and NEES.
+  static State difference(const State& a, const State& b) {
+    State d = a - b;
+    d[2] = wrapAngle(d[2]);
+    return d;
+  }
+};
+
+}  // namespace sylva
