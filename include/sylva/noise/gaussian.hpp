@@ -33,7 +33,11 @@ class Gaussian {
              os.str());
       }
     }
-    return Gaussian(Covariance(sigma.array().square().matrix().asDiagonal()));
+    const Vec<N> variance = sigma.array().square().matrix();
+    if (!variance.allFinite() || !(variance.minCoeff() > 0.0))
+      fail(ErrorCode::kNotPositiveDefinite,
+           "Gaussian::sigmas: a variance under- or overflows double precision");
+    return Gaussian(Covariance(variance.asDiagonal()));
   }
 
   /// Independent components with the given variances (units squared).

@@ -1,0 +1,12 @@
+#pragma once
+/// @file
+/// Umbrella header of the simulators (namespace sylva::sim): seeded random numbers, a loop
+/// path and the robot driving it with noisy odometry, a landmark field along the path and a
+/// range-bearing sensor. Everything is reproducible bit for bit from one seed.
+// IWYU pragma: begin_exports
+#include "sylva/sim/landmarks_2d.hpp"
+#include "sylva/sim/loop_path_2d.hpp"
+#include "sylva/sim/loop_trajectory_2d.hpp"
+#include "sylva/sim/random.hpp"
+#include "sylva/sim/range_bearing_sensor.hpp"
+// IWYU pragma: end_exports

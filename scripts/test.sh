@@ -1,0 +1,108 @@
+#!/usr/bin/env bash
+# Builds and runs sylva's tests on a fresh Debian 12 machine.
+#
+#   bash scripts/test.sh                 Release build of tests, examples and benchmarks;
+#                                        runs every test with ctest
+#   bash scripts/test.sh --sanitize      also builds and runs the tests under
+#                                        AddressSanitizer + UndefinedBehaviorSanitizer
+#   bash scripts/test.sh --consumer      also installs sylva into a temporary prefix and
+#                                        builds and runs tests/consumer against it
+#   bash scripts/test.sh --skip-main     leaves out the Release phase (with the flags above)
+#
+# Missing Debian packages are installed with apt-get (as root, or through sudo).
+# Environment: SYLVA_BUILD_ROOT (default <repo>/build) holds the build directories,
+# SYLVA_JOBS (default: number of cores) is the parallelism of builds and ctest.
+#
+# Examples and benchmarks are compiled in the Release phase so that CI notices when they
+# break; ctest runs them only where an example registers a cheap smoke run through
+# sylva_add_example_smoke_test() (see the top-level CMakeLists.txt), label "smoke".
+set -euo pipefail
+
+usage() { sed -n '2,18p' "$0" | sed 's/^# \{0,1\}//'; }
+
+run_main=1
+run_sanitize=0
+run_consumer=0
+for arg in "$@"; do
+  case "$arg" in
+    --sanitize) run_sanitize=1 ;;
+    --consumer) run_consumer=1 ;;
+    --skip-main) run_main=0 ;;
+    -h | --help) usage; exit 0 ;;
+    *) echo "test.sh: unknown option '$arg'" >&2; usage >&2; exit 2 ;;
+  esac
+done
+
+repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+build_root="${SYLVA_BUILD_ROOT:-$repo/build}"
+jobs="${SYLVA_JOBS:-$(nproc)}"
+
+# ---- dependencies ------------------------------------------------------------------------
+packages=(build-essential cmake libeigen3-dev catch2 libcli11-dev nlohmann-json3-dev
+          libboost-math-dev libbenchmark-dev)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  echo "==> installing missing Debian packages: ${missing[*]}"
+  sudo_cmd=()
+  if [[ "$(id -u)" != 0 ]]; then sudo_cmd=(sudo); fi
+  "${sudo_cmd[@]}" apt-get update
+  "${sudo_cmd[@]}" env DEBIAN_FRONTEND=noninteractive \
+    apt-get install -y --no-install-recommends "${missing[@]}"
+fi
+
+phase_start=0
+begin() { echo; echo "==> $1"; phase_start=$SECONDS; }
+finish() { echo "==> $1 done in $((SECONDS - phase_start)) s"; }
+
+# ---- Release: tests, examples and benchmarks ---------------------------------------------
+if ((run_main)); then
+  begin "Release build (tests, examples, benchmarks) in $build_root/test"
+  cmake -S "$repo" -B "$build_root/test" -DCMAKE_BUILD_TYPE=Release \
+    -DSYLVA_BUILD_TESTS=ON -DSYLVA_BUILD_EXAMPLES=ON -DSYLVA_BUILD_BENCHMARKS=ON
+  cmake --build "$build_root/test" -j "$jobs"
+  finish "Release build"
+  begin "ctest (Release)"
+  (cd "$build_root/test" && ctest --output-on-failure -j "$jobs")
+  finish "ctest (Release)"
+fi
+
+# ---- AddressSanitizer + UndefinedBehaviorSanitizer ---------------------------------------
+# RelWithDebInfo (-O2 -g): Eigen at -O0 under ASan is many times slower, and the
+# optimizer does not hide the errors these sanitizers look for.
+if ((run_sanitize)); then
+  begin "ASan+UBSan build (tests) in $build_root/sanitize"
+  cmake -S "$repo" -B "$build_root/sanitize" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    -DSYLVA_BUILD_TESTS=ON -DSYLVA_BUILD_EXAMPLES=OFF -DSYLVA_BUILD_BENCHMARKS=OFF \
+    -DSYLVA_SANITIZERS="address;undefined"
+  cmake --build "$build_root/sanitize" -j "$jobs"
+  finish "ASan+UBSan build"
+  begin "ctest (ASan+UBSan)"
+  (cd "$build_root/sanitize" &&
+    ASAN_OPTIONS="detect_leaks=1:strict_string_checks=1:detect_stack_use_after_return=1" \
+    UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1" \
+    ctest --output-on-failure -j "$jobs")
+  finish "ctest (ASan+UBSan)"
+fi
+
+# ---- downstream consumer of the installed package ----------------------------------------
+if ((run_consumer)); then
+  begin "install + tests/consumer"
+  tmp="$(mktemp -d "${TMPDIR:-/tmp}/sylva-consumer.XXXXXX")"
+  trap 'rm -rf "$tmp"' EXIT
+  cmake -S "$repo" -B "$tmp/sylva-build" -DCMAKE_BUILD_TYPE=Release \
+    -DSYLVA_BUILD_TESTS=OFF -DSYLVA_BUILD_EXAMPLES=OFF -DSYLVA_BUILD_BENCHMARKS=OFF
+  cmake --install "$tmp/sylva-build" --prefix "$tmp/prefix"
+  cmake -S "$repo/tests/consumer" -B "$tmp/consumer-build" -DCMAKE_BUILD_TYPE=Release \
+    -DCMAKE_PREFIX_PATH="$tmp/prefix"
+  found="$(sed -n 's/^sylva_DIR:PATH=//p' "$tmp/consumer-build/CMakeCache.txt")"
+  if [[ "$found" != "$tmp/prefix/"* ]]; then
+    echo "test.sh: the consumer found sylva in '$found', not in the fresh prefix" >&2
+    exit 1
+  fi
+  cmake --build "$tmp/consumer-build" -j "$jobs"
+  "$tmp/consumer-build/sylva_consumer"
+  finish "install + tests/consumer"
+fi
