@@ -1,0 +1,96 @@
+// NEES / NIS / NMEE and their chi-square bounds.
+
+#include <Eigen/LU>
+#include <random>
+
+#include <sylva/consistency.hpp>
+
+#include "sylva_catch.hpp"
+
+using namespace sylva;
+using Catch::Matchers::Contains;
+
+TEST_CASE("chi-square quantiles match tabulated values", "[consistency]") {
+  // Standard table values (e.g. Abramowitz & Stegun 26.4).
+  CHECK(chiSquareQuantile(0.95, 1) == Approx(3.841459).epsilon(1e-6));
+  CHECK(chiSquareQuantile(0.95, 2) == Approx(5.991465).epsilon(1e-6));
+  CHECK(chiSquareQuantile(0.99, 2) == Approx(9.210340).epsilon(1e-6));
+  CHECK(chiSquareQuantile(0.025, 3) == Approx(0.2157953).epsilon(1e-6));
+  CHECK(chiSquareQuantile(0.975, 3) == Approx(9.348404).epsilon(1e-6));
+  CHECK(chiSquareGate(2, 0.95) == chiSquareQuantile(0.95, 2));
+  const auto [lo, hi] = averageChiSquareBounds(3, 50, 0.95);
+  CHECK(lo == Approx(chiSquareQuantile(0.025, 150) / 50));
+  CHECK(hi == Approx(chiSquareQuantile(0.975, 150) / 50));
+  CHECK(lo < 3.0);
+  CHECK(hi > 3.0);
+  CHECK_THROWS_WITH(chiSquareQuantile(1.5, 2), Contains("0 < p < 1"));
+  CHECK_THROWS_WITH(averageChiSquareBounds(0, 10), Contains("dof > 0"));
+}
+
+TEST_CASE("nees, nis and normalized error are the textbook quadratic forms", "[consistency]") {
+  Mat<2, 2> P;
+  P << 4.0, 1.0, 1.0, 2.0;
+  const Vec<2> e(1.0, -1.0);
+  CHECK(nees(e, P) == Approx(e.dot(P.inverse() * e)));
+  CHECK(nis(e, P) == nees(e, P));
+  const Vec<2> ne = normalizedError(e, P);
+  CHECK(ne[0] == Approx(0.5));
+  CHECK(ne[1] == Approx(-1.0 / std::sqrt(2.0)));
+  Eigen::MatrixXd Pd = P;
+  Eigen::VectorXd ed = e;
+  CHECK(nees(ed, Pd) == Approx(nees(e, P)));
+  CHECK_THROWS_WITH(nees(e, Mat<2, 2>(-P)), Contains("not positive definite"));
+  CHECK_THROWS_WITH(nees(Eigen::VectorXd::Ones(3), Pd), Contains("sizes do not match"));
+  CHECK_THROWS_WITH(nees(Vec<2>(NAN, 0.0), P), Contains("not finite"));
+}
+
+namespace {
+/// NEES of errors drawn from N(0, P_true) but judged with P_filter, over runs x steps.
+NeesSeries simulateNees(double filter_scale, int runs, int steps, unsigned seed) {
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> normal;
+  Mat<3, 3> A;
+  A << 1.0, 0.0, 0.0, 0.5, 2.0, 0.0, -0.3, 0.2, 0.1;
+  const Mat<3, 3> P_true = A * A.transpose();
+  NeesSeries series(3);
+  for (int r = 0; r < runs; ++r)
+    for (int k = 0; k < steps; ++k) {
+      const Vec<3> e = A * Vec<3>(normal(rng), normal(rng), normal(rng));
+      series.add(k, nees(e, Mat<3, 3>(filter_scale * P_true)));
+    }
+  return series;
+}
+}  // namespace
+
+TEST_CASE("a consistent estimator's averaged NEES stays inside the 95% bounds", "[consistency]") {
+  const NeesSeries consistent = simulateNees(1.0, 50, 400, 42);
+  CHECK(consistent.runs() == 50);
+  CHECK(consistent.steps() == 400);
+  CHECK(consistent.mean() == Approx(3.0).epsilon(0.03));
+  // 95% per step: the share inside is binomial(400, 0.95), so 0.90..0.99 is far in the tails.
+  CHECK(consistent.fractionInside() > 0.90);
+  CHECK(consistent.fractionInside() < 0.99);
+
+  const NeesSeries optimistic = simulateNees(0.1, 50, 400, 42);  // told 10x smaller variance
+  CHECK(optimistic.mean() > optimistic.bounds().second);
+  CHECK(optimistic.fractionInside() < 0.01);
+  const NeesSeries pessimistic = simulateNees(10.0, 50, 400, 42);
+  CHECK(pessimistic.mean() < pessimistic.bounds().first);
+}
+
+TEST_CASE("NMEE bounds are those of an N(0, 1/N) average", "[consistency]") {
+  const auto [lo, hi] = NmeeSeries<2>::bounds(50, 0.95);
+  CHECK(hi == Approx(1.959964 / std::sqrt(50.0)).epsilon(1e-6));
+  CHECK(lo == -hi);
+  NmeeSeries<2> series;
+  std::mt19937_64 rng(3);
+  std::normal_distribution<double> normal;
+  int inside = 0;
+  const int steps = 400;
+  for (int r = 0; r < 50; ++r)
+    for (int k = 0; k < steps; ++k) series.add(k, Vec<2>(normal(rng), normal(rng)));
+  for (const Vec<2>& a : series.averages()) inside += (a[0] > lo && a[0] < hi) ? 1 : 0;
+  CHECK(static_cast<double>(inside) / steps > 0.90);
+  CHECK_THROWS_WITH(NmeeSeries<2>::bounds(0), Contains("runs > 0"));
+  CHECK_THROWS_WITH(series.add(-1, Vec<2>::Zero()), Contains("negative step"));
+}
