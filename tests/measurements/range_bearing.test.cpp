@@ -1,0 +1,100 @@
+// RangeBearing and InverseRangeBearing: Jacobians against central differences at ordinary
+// and awkward geometry, the model laws (inverse then forward is the identity), wrapping,
+// degenerate input.
+
+#include <limits>
+
+#include <sylva/measurements/range_bearing.hpp>
+#include <sylva/testing/check_jacobians.hpp>
+
+#include "sylva_catch.hpp"
+
+using namespace sylva;
+
+namespace {
+struct Geometry {
+  const char* name;
+  Vec<3> robot;
+  Vec<2> landmark;
+  // Central differences step 1e-6 * max(1, |x|); 1 mm from the robot that step is no longer
+  // small against the distance, and the truncation error (~ (h / d)^2) sets the tolerance.
+  double tolerance = 1e-6;
+};
+
+// Ordinary and awkward configurations: landmark straight behind (bearing at the +-pi seam),
+// heading at the seam, on the axes (dx = 0 or dy = 0), very close (1 mm), very far (10 km).
+const Geometry kGeometries[] = {
+    {"ordinary", Vec<3>(1.0, 2.0, 0.3), Vec<2>(5.0, 4.0)},
+    {"behind the robot, bearing near +pi", Vec<3>(0.0, 0.0, 0.0), Vec<2>(-5.0, 1e-7)},
+    {"behind the robot, bearing near -pi", Vec<3>(0.0, 0.0, 0.0), Vec<2>(-5.0, -1e-7)},
+    {"heading at the seam", Vec<3>(2.0, -1.0, kPi - 1e-9), Vec<2>(-3.0, -1.5)},
+    {"straight ahead on the x axis", Vec<3>(0.0, 0.0, 0.0), Vec<2>(7.0, 0.0)},
+    {"straight left on the y axis", Vec<3>(0.0, 0.0, 0.0), Vec<2>(0.0, 7.0)},
+    {"1 mm away", Vec<3>(3.0, 3.0, -2.0), Vec<2>(3.0007, 3.0007), 1e-4},
+    {"10 km away", Vec<3>(0.0, 0.0, 1.0), Vec<2>(7000.0, -7000.0)},
+};
+}  // namespace
+
+TEST_CASE("RangeBearing Jacobians match numerical differentiation", "[measurements][jacobian]") {
+  for (const Geometry& g : kGeometries) {
+    INFO(g.name);
+    const auto analytic = testing::checkMeasurementJacobians(RangeBearing{}, g.robot, g.landmark, g.tolerance);
+    INFO(analytic.message());
+    CHECK(analytic.ok);
+    // The automatic Jacobian of the same prediction agrees with the analytic one to round-off.
+    Mat<2, 3> J_x, A_x;
+    Mat<2, 2> J_l, A_l;
+    RangeBearing{}(g.robot, g.landmark, J_x, J_l);
+    AutoDiff<RangeBearing>{}(g.robot, g.landmark, A_x, A_l);
+    CHECK((J_x - A_x).cwiseAbs().maxCoeff() <= 1e-12 * std::max(1.0, J_x.cwiseAbs().maxCoeff()));
+    CHECK((J_l - A_l).cwiseAbs().maxCoeff() <= 1e-12 * std::max(1.0, J_l.cwiseAbs().maxCoeff()));
+  }
+}
+
+TEST_CASE("InverseRangeBearing Jacobians match numerical differentiation", "[measurements][jacobian]") {
+  const std::pair<Vec<3>, Vec<2>> cases[] = {
+      {Vec<3>(1.0, 2.0, 0.3), Vec<2>(5.0, 0.4)},
+      {Vec<3>(0.0, 0.0, kPi), Vec<2>(3.0, kPi)},       // world angle 2 pi
+      {Vec<3>(-4.0, 1.0, -3.0), Vec<2>(1e-3, -1.0)},   // very close
+      {Vec<3>(0.0, 0.0, 0.0), Vec<2>(2e4, 1.5)},       // very far
+  };
+  for (const auto& [robot, z] : cases) {
+    INFO("robot " << robot.transpose() << ", z " << z.transpose());
+    const auto report = testing::checkInverseJacobians(InverseRangeBearing{}, robot, z, 1e-6);
+    INFO(report.message());
+    CHECK(report.ok);
+  }
+}
+
+TEST_CASE("inverse then forward model is the identity", "[measurements][laws]") {
+  for (const Geometry& g : kGeometries) {
+    INFO(g.name);
+    const Vec<2> z = RangeBearing{}(g.robot, g.landmark);
+    const Vec<2> l = InverseRangeBearing{}(g.robot, z);
+    CHECK((l - g.landmark).norm() <= 1e-9 * std::max(1.0, g.landmark.norm()));
+    const Vec<2> z_again = RangeBearing{}(g.robot, l);
+    CHECK(RangeBearing{}.residual(z_again, z).norm() <= 1e-9 * std::max(1.0, z[0]));
+  }
+}
+
+TEST_CASE("the bearing and the residual are wrapped to (-pi, pi]", "[measurements]") {
+  const Vec<2> z = RangeBearing{}(Vec<3>(0.0, 0.0, 0.0), Vec<2>(-5.0, -1e-9));
+  CHECK(z[1] > -kPi);
+  CHECK(z[1] <= kPi);
+  CHECK(z[1] == Approx(-kPi).margin(1e-6));
+  // Measured just across the seam: the innovation is small, not 2 pi.
+  const Vec<2> nu = RangeBearing{}.residual(Vec<2>(5.0, kPi - 0.01), Vec<2>(5.0, -kPi + 0.01));
+  CHECK(nu[1] == Approx(-0.02).margin(1e-12));
+  CHECK(wrapAngle(3 * kPi) == Approx(kPi));
+  CHECK(wrapAngle(-kPi) == Approx(kPi));
+  CHECK(wrapAngle(7.0) == Approx(7.0 - 2 * kPi));
+}
+
+TEST_CASE("degenerate and non-finite input is rejected with a reason", "[measurements][errors]") {
+  using Catch::Matchers::Contains;
+  CHECK_THROWS_WITH(RangeBearing{}(Vec<3>(1.0, 1.0, 0.0), Vec<2>(1.0, 1.0)), Contains("coincides with the robot"));
+  CHECK_THROWS_WITH(RangeBearing{}(Vec<3>(1.0, 1.0, 0.0), Vec<2>(std::numeric_limits<double>::quiet_NaN(), 1.0)),
+                    Contains("non-finite"));
+  CHECK_THROWS_WITH(InverseRangeBearing{}(Vec<3>::Zero(), Vec<2>(-1.0, 0.0)), Contains("must be > 0"));
+  CHECK_THROWS_WITH(InverseRangeBearing{}(Vec<3>::Zero(), Vec<2>(1.0, INFINITY)), Contains("not finite"));
+}

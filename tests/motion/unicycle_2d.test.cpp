@@ -1,0 +1,43 @@
+// Unicycle2D: eq. 2.12-2.14, Jacobians against central differences at ordinary and awkward
+// inputs (standing still, turning on the spot, heading at the +-pi seam, long steps).
+
+#include <sylva/motion/unicycle_2d.hpp>
+#include <sylva/testing/check_jacobians.hpp>
+
+#include "sylva_catch.hpp"
+
+using namespace sylva;
+
+TEST_CASE("Unicycle2D follows eq. 2.12-2.14", "[motion]") {
+  const Vec<3> next = Unicycle2D{}(Vec<3>(1.0, 2.0, 0.5), Vec<2>(2.0, 0.4), 0.5);
+  const double heading = 0.5 + 0.5 * 0.5 * 0.4;
+  CHECK(next[0] == Approx(1.0 + 0.5 * 2.0 * std::cos(heading)));
+  CHECK(next[1] == Approx(2.0 + 0.5 * 2.0 * std::sin(heading)));
+  CHECK(next[2] == Approx(0.5 + 0.5 * 0.4));
+  // Crossing the seam keeps theta in (-pi, pi].
+  const Vec<3> wrapped = Unicycle2D{}(Vec<3>(0.0, 0.0, 3.1), Vec<2>(0.0, 1.0), 0.1);
+  CHECK(wrapped[2] == Approx(3.2 - 2 * kPi));
+}
+
+TEST_CASE("Unicycle2D Jacobians match numerical differentiation", "[motion][jacobian]") {
+  struct Case {
+    const char* name;
+    Vec<3> x;
+    Vec<2> u;
+    double dt;
+  };
+  const Case cases[] = {
+      {"ordinary", Vec<3>(1.0, 2.0, 0.3), Vec<2>(1.0, 0.2), 0.1},
+      {"standing still", Vec<3>(1.0, 2.0, 0.3), Vec<2>(0.0, 0.0), 0.1},
+      {"turning on the spot", Vec<3>(-3.0, 0.5, -1.0), Vec<2>(0.0, 1.5), 0.2},
+      {"heading at the seam", Vec<3>(0.0, 0.0, kPi - 1e-3), Vec<2>(2.0, 0.5), 0.1},
+      {"long step", Vec<3>(5.0, 5.0, 2.0), Vec<2>(3.0, -2.0), 2.0},
+      {"zero time step", Vec<3>(5.0, 5.0, 2.0), Vec<2>(3.0, -2.0), 0.0},
+  };
+  for (const Case& c : cases) {
+    INFO(c.name);
+    const auto report = testing::checkMotionJacobians(Unicycle2D{}, c.x, c.u, c.dt, 1e-6);
+    INFO(report.message());
+    CHECK(report.ok);
+  }
+}
