@@ -36,17 +36,19 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
-#include <cmath>
 #include <cstdint>
+#include <fstream>
 #include <map>
-#include <random>
+#include <string>
 #include <vector>
 
+#include "sylva/core/angles.hpp"
 #include "sylva/filter/ekf.hpp"
 #include "sylva/landmarks/point2.hpp"
 #include "sylva/measurements/range_bearing.hpp"
 #include "sylva/motion/unicycle_2d.hpp"
 #include "sylva/noise/gaussian.hpp"
+#include "sylva/sim/random.hpp"
 #include "sylva/testing/dense_reference_ekf.hpp"
 
 namespace {
@@ -63,7 +65,6 @@ constexpr int kVisible = 5;         ///< observations per SLAM step
 constexpr int kSetupSteps = 20;     ///< predict/add/re-observe rounds that build the map
 constexpr std::uint64_t kSeed = 0x5eed'0b5e'2d5e'7a11ULL;
 constexpr double kDt_s = 0.1;
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kMinRange_m = 5.0;
 constexpr double kMaxRange_m = 40.0;
 /// Offset added to / subtracted from the predicted measurement in the timed loop.
@@ -82,20 +83,10 @@ const sylva::Gaussian<2>& measurementNoise() {
   return noise;
 }
 
-/// Uniform in [0, 1) from the top 53 bits: identical on every platform for a given seed.
-double uniform(std::mt19937_64& rng) { return static_cast<double>(rng() >> 11) * 0x1.0p-53; }
-
-/// Standard normal by Box-Muller on `uniform`.
-double standardNormal(std::mt19937_64& rng) {
-  const double u1 = 1.0 - uniform(rng);  // (0, 1]
-  const double u2 = uniform(rng);
-  return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * kPi * u2);
-}
-
 /// Builds the map of `landmarks` Point2 landmarks with filter type `F` (see file comment).
 template <typename F>
 F buildFilter(int landmarks) {
-  std::mt19937_64 rng(kSeed + static_cast<std::uint64_t>(landmarks));
+  sylva::sim::Rng rng(sylva::sim::deriveSeed(kSeed, static_cast<std::uint64_t>(landmarks)));
   const Mat<3, 3> P0 = Vec<3>(1e-4, 1e-4, 1e-5).asDiagonal();
   F ekf(Vec<3>::Zero(), P0);
   ekf.reserve(sylva::Point2::kDim * landmarks);
@@ -106,14 +97,13 @@ F buildFilter(int landmarks) {
     ekf.predict(kControl, kDt_s, motionNoise());
     const int target = (step + 1) * landmarks / kSetupSteps;
     for (; added < target; ++added) {
-      const double range_m = kMinRange_m + (kMaxRange_m - kMinRange_m) * uniform(rng);
-      const double bearing_rad = -kPi + 2.0 * kPi * uniform(rng);
+      const double range_m = rng.uniform(kMinRange_m, kMaxRange_m);
+      const double bearing_rad = rng.uniform(-sylva::kPi, sylva::kPi);
       ekf.add(added, inverse, Vec<2>(range_m, bearing_rad), measurementNoise());
     }
     for (int j = 0; j < kVisible && added > 0; ++j) {
-      const Id id = static_cast<Id>(rng() % static_cast<std::uint64_t>(added));
-      const Vec<2> z = ekf.linearize(model, id).z_hat +
-                       measurementNoise().sample([&] { return standardNormal(rng); });
+      const Id id = static_cast<Id>(rng.engine()() % static_cast<std::uint64_t>(added));
+      const Vec<2> z = ekf.linearize(model, id).z_hat + rng.sample(measurementNoise());
       ekf.update(model, id, z, measurementNoise());
     }
   }
@@ -334,27 +324,65 @@ void BM_StepNaive(benchmark::State& state) {
 /// the range over which docs/benchmarks.md fits the scaling exponent.
 const std::vector<int> kLandmarkCounts = {50, 100, 200, 300, 500, 700, 1000};
 
-/// O(n^2) families: enough iterations for a stable figure.
-void fastArgs(benchmark::internal::Benchmark* b) {
+/// Every family runs each size for at least 0.3 s per repetition. The O(n^3) families need
+/// no cap of their own: at N = 700 and 1000 a single naive iteration already takes longer
+/// than that, so Google Benchmark stops after one iteration per repetition.
+void sizes(benchmark::internal::Benchmark* b) {
   for (int n : kLandmarkCounts) b->Arg(n);
   b->MinTime(0.3)->Unit(benchmark::kMicrosecond);
 }
 
-/// O(n^3) families: at N = 1000 one update is about a second, so Google Benchmark's first
-/// single-iteration run already exceeds the minimum time and stops there.
-void naiveArgs(benchmark::internal::Benchmark* b) {
-  for (int n : kLandmarkCounts) b->Arg(n);
-  b->MinTime(0.3)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_UpdateEfficient)->Apply(sizes);
+BENCHMARK(BM_UpdateJoseph)->Apply(sizes);
+BENCHMARK(BM_UpdateBatched)->Apply(sizes);
+BENCHMARK(BM_UpdateNaive)->Apply(sizes);
+BENCHMARK(BM_StepEfficient)->Apply(sizes);
+BENCHMARK(BM_StepBatched)->Apply(sizes);
+BENCHMARK(BM_StepNaive)->Apply(sizes);
+
+/// "model name" of the first processor in /proc/cpuinfo, or "unknown".
+std::string cpuModel() {
+  std::ifstream cpuinfo("/proc/cpuinfo");
+  std::string line;
+  while (std::getline(cpuinfo, line)) {
+    if (line.rfind("model name", 0) == 0) {
+      const auto colon = line.find(':');
+      if (colon != std::string::npos) return line.substr(line.find_first_not_of(" \t", colon + 1));
+    }
+  }
+  return "unknown";
 }
 
-BENCHMARK(BM_UpdateEfficient)->Apply(fastArgs);
-BENCHMARK(BM_UpdateJoseph)->Apply(fastArgs);
-BENCHMARK(BM_UpdateBatched)->Apply(fastArgs);
-BENCHMARK(BM_UpdateNaive)->Apply(naiveArgs);
-BENCHMARK(BM_StepEfficient)->Apply(fastArgs);
-BENCHMARK(BM_StepBatched)->Apply(fastArgs);
-BENCHMARK(BM_StepNaive)->Apply(naiveArgs);
+// Set by bench/CMakeLists.txt.
+#ifndef SYLVA_BENCH_CXX_FLAGS
+#define SYLVA_BENCH_CXX_FLAGS "unknown"
+#endif
+#ifndef SYLVA_BENCH_BUILD_TYPE
+#define SYLVA_BENCH_BUILD_TYPE "unknown"
+#endif
 
 }  // namespace
 
-BENCHMARK_MAIN();
+int main(int argc, char** argv) {
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  // Recorded in the JSON context so that docs/benchmarks.md can name the machine and build.
+  benchmark::AddCustomContext("cpu_model", cpuModel());
+#if defined(__clang__)
+  benchmark::AddCustomContext("compiler", std::string("clang ") + __clang_version__);
+#elif defined(__GNUC__)
+  benchmark::AddCustomContext("compiler", std::string("gcc ") + __VERSION__);
+#else
+  benchmark::AddCustomContext("compiler", "unknown");
+#endif
+  benchmark::AddCustomContext("cxx_flags", SYLVA_BENCH_CXX_FLAGS);
+  benchmark::AddCustomContext("build_type", SYLVA_BENCH_BUILD_TYPE);
+  benchmark::AddCustomContext("eigen_version", std::to_string(EIGEN_WORLD_VERSION) + "." +
+                                                   std::to_string(EIGEN_MAJOR_VERSION) + "." +
+                                                   std::to_string(EIGEN_MINOR_VERSION));
+  benchmark::AddCustomContext("eigen_simd", Eigen::SimdInstructionSetsInUse());
+  benchmark::AddCustomContext("observations_per_step", std::to_string(kVisible));
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

@@ -26,8 +26,8 @@
 #include <Eigen/Core>
 #include <Eigen/Eigenvalues>
 #include <algorithm>
-#include <array>
 #include <cmath>
+#include <iterator>
 #include <sstream>
 #include <string>
 #include <type_traits>
@@ -633,9 +633,15 @@ class BasicEkf {
       llt.matrixU().template solveInPlace<Eigen::OnTheRight>(PHt);
       const Eigen::Matrix<double, M, 1> v = llt.matrixL().solve(nu);
       mean_.head(n_).noalias() += PHt * v;
-      for (int j = 0; j < n_; ++j) {
-        const Eigen::Matrix<double, M, 1> w_j = PHt.row(j).transpose();
-        P.col(j).tail(n_ - j).noalias() -= PHt.bottomRows(n_ - j) * w_j;
+      if constexpr (M == Eigen::Dynamic) {
+        // Batches: Eigen's blocked symmetric rank-k update of the lower triangle.
+        P.template selfadjointView<Eigen::Lower>().rankUpdate(PHt, -1.0);
+      } else {
+        // One column at a time: a fixed-size GEMV per column, one pass over half of P.
+        for (int j = 0; j < n_; ++j) {
+          const Eigen::Matrix<double, M, 1> w_j = PHt.row(j).transpose();
+          P.col(j).tail(n_ - j).noalias() -= PHt.bottomRows(n_ - j) * w_j;
+        }
       }
     }
     normalizeAll();

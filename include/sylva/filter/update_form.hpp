@@ -7,8 +7,10 @@
 ///   subtracted term is symmetric positive semi-definite by construction; only the lower
 ///   triangle of P is touched (the filter keeps the lower triangle authoritative).
 /// - `JosephUpdate`: P = (I - K H) P (I - K H)^T + K R K^T, which stays symmetric positive
-///   semi-definite even for a sub-optimal gain. It works on the full matrix and costs about
-///   three passes over P instead of half of one; see docs/benchmarks.md.
+///   semi-definite even for a sub-optimal gain. It is computed in product form on the full
+///   matrix: mirror the lower triangle, A = (I - K H) P, then A - (A H^T) K^T + K R K^T, i.e.
+///   several full passes over P instead of half of one (7-10x the symmetric form's time at
+///   n = 100..2000 in docs/benchmarks.md).
 
 namespace sylva {
 
