@@ -1,5 +1,6 @@
 #include "sylva_catch.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <vector>

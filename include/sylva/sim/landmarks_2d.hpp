@@ -34,11 +34,11 @@ struct TrueLandmark2D {
 };
 
 struct LandmarkField2DOptions {
-  int count = 120;                      ///< number of landmarks, > 0
-  double band_min_m = 1.0;              ///< closest distance to the path, >= 0
-  double band_max_m = 7.0;              ///< farthest lateral offset from the path, > band_min
-  double min_separation_m = 0.0;        ///< smallest distance between two landmarks, >= 0
-  int max_attempts_per_landmark = 1000; ///< rejection-sampling budget, > 0
+  int count = 120;                       ///< number of landmarks, > 0
+  double band_min_m = 1.0;               ///< closest distance to the path, >= 0
+  double band_max_m = 7.0;               ///< farthest lateral offset from the path, > band_min
+  double min_separation_m = 0.0;         ///< smallest distance between two landmarks, >= 0
+  int max_attempts_per_landmark = 1000;  ///< rejection-sampling budget, > 0
 };
 
 /// `options.count` landmarks in a band on both sides of `path` (see the file comment).

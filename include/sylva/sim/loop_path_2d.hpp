@@ -62,7 +62,8 @@ class LoopPath2D {
       fail(ErrorCode::kInvalidArgument, os.str());
     }
     // perimeter = 2 (1 + aspect) width - (8 - 2 pi) r
-    const double width = (perimeter_m + (8.0 - 2.0 * kPi) * corner_radius_m) / (2.0 * (1.0 + aspect));
+    const double width =
+        (perimeter_m + (8.0 - 2.0 * kPi) * corner_radius_m) / (2.0 * (1.0 + aspect));
     if (!(2.0 * corner_radius_m <= width * (1.0 + 1e-12))) {
       std::ostringstream os;
       os << "LoopPath2D::withPerimeter: a perimeter of " << perimeter_m

@@ -40,32 +40,32 @@
 namespace sylva::sim {
 
 struct LoopTrajectory2DOptions {
-  double perimeter_m = 120.0;     ///< length of one lap
-  double aspect = 2.0;            ///< length / width of the loop's bounding box, >= 1
-  double corner_radius_m = 8.0;   ///< radius of the four rounded corners
-  double speed_mps = 1.0;         ///< forward speed (adjusted slightly, see the file comment)
-  double dt_s = 0.1;              ///< time step
-  double sigma_v_mps = 0.005;     ///< odometry noise on v (Table 3.1: 0.5 cm/s)
+  double perimeter_m = 120.0;    ///< length of one lap
+  double aspect = 2.0;           ///< length / width of the loop's bounding box, >= 1
+  double corner_radius_m = 8.0;  ///< radius of the four rounded corners
+  double speed_mps = 1.0;        ///< forward speed (adjusted slightly, see the file comment)
+  double dt_s = 0.1;             ///< time step
+  double sigma_v_mps = 0.005;    ///< odometry noise on v (Table 3.1: 0.5 cm/s)
   double sigma_omega_radps = 0.025 * kPi / 180.0;  ///< odometry noise on omega (0.025 deg/s)
 };
 
 /// One simulated step: the control applied during the step, the true pose at its end and
 /// the noisy odometry the robot reports for it.
 struct TrajectoryStep2D {
-  double time_s;         ///< time at the end of the step
-  Vec<2> true_control;   ///< [v, omega]
-  Vec<3> true_pose;      ///< [x, y, theta] at time_s
-  Vec<2> odometry;       ///< true_control + noise
+  double time_s;        ///< time at the end of the step
+  Vec<2> true_control;  ///< [v, omega]
+  Vec<3> true_pose;     ///< [x, y, theta] at time_s
+  Vec<2> odometry;      ///< true_control + noise
 };
 
 class LoopTrajectory2D {
  public:
   explicit LoopTrajectory2D(const LoopTrajectory2DOptions& options = {})
       : options_(validated(options)),
-        path_(LoopPath2D::withPerimeter(options.perimeter_m, options.aspect,
-                                        options.corner_radius_m)),
-        odometry_noise_(Gaussian<2>::sigmas(Vec<2>(options.sigma_v_mps,
-                                                   options.sigma_omega_radps))) {
+        path_(LoopPath2D::withPerimeter(
+            options.perimeter_m, options.aspect, options.corner_radius_m)),
+        odometry_noise_(
+            Gaussian<2>::sigmas(Vec<2>(options.sigma_v_mps, options.sigma_omega_radps))) {
     const double step_length = options_.speed_mps * options_.dt_s;
     steps_per_lap_ = std::max(1, static_cast<int>(std::lround(path_.perimeter() / step_length)));
     step_length_ = path_.perimeter() / steps_per_lap_;
