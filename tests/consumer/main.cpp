@@ -4,6 +4,7 @@
 #include <cmath>
 #include <iostream>
 #include <string>
+
 #include <sylva/sylva.hpp>
 
 namespace {

@@ -7,6 +7,7 @@
 /// nothing is allocated). `Ekf::update` applies this automatically to models without an
 /// analytic Jacobian; wrap a model yourself to compare analytic and automatic Jacobians.
 
+#include <Eigen/Core>
 #include <unsupported/Eigen/AutoDiff>
 
 #include "sylva/core/jacobian_ref.hpp"

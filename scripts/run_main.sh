@@ -1,0 +1,45 @@
+#!/usr/bin/env bash
+# Builds sylva's main example on a fresh Debian 12 machine and runs it on its default
+# scenario: 2D range-bearing EKF-SLAM on a simulated loop (examples/range_bearing_slam).
+#
+#   bash scripts/run_main.sh                 default scenario
+#   bash scripts/run_main.sh --json --runs 20   extra arguments go to range_bearing_slam
+#                                            (--help lists them)
+#
+# Missing Debian packages are installed with apt-get (as root, or through sudo).
+# Environment: SYLVA_BUILD_ROOT (default <repo>/build) holds the build directory,
+# SYLVA_JOBS (default: number of cores) is the build parallelism.
+set -euo pipefail
+
+repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+build="${SYLVA_BUILD_ROOT:-$repo/build}/main"
+jobs="${SYLVA_JOBS:-$(nproc)}"
+
+# ---- dependencies (the library: Eigen; the example: CLI11, nlohmann_json, Boost.Math) ----
+packages=(build-essential cmake libeigen3-dev libboost-math-dev libcli11-dev nlohmann-json3-dev)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  echo "==> installing missing Debian packages: ${missing[*]}" >&2
+  sudo_cmd=()
+  if [[ "$(id -u)" != 0 ]]; then
+    command -v sudo >/dev/null || { echo "run as root or install sudo" >&2; exit 1; }
+    sudo_cmd=(sudo)
+  fi
+  "${sudo_cmd[@]}" env DEBIAN_FRONTEND=noninteractive apt-get update >&2
+  "${sudo_cmd[@]}" env DEBIAN_FRONTEND=noninteractive \
+    apt-get install -y --no-install-recommends "${missing[@]}" >&2
+fi
+
+# ---- configure and build (build output goes to stderr so that stdout is the program's) ----
+echo "==> building range_bearing_slam in $build" >&2
+cmake -S "$repo" -B "$build" -DCMAKE_BUILD_TYPE=Release \
+  -DSYLVA_BUILD_TESTS=OFF -DSYLVA_BUILD_BENCHMARKS=OFF -DSYLVA_BUILD_EXAMPLES=ON \
+  -DCMAKE_RUNTIME_OUTPUT_DIRECTORY="$build/bin" >&2
+cmake --build "$build" --target range_bearing_slam -j "$jobs" >&2
+
+# ---- run ------------------------------------------------------------------------------------
+echo "==> $build/bin/range_bearing_slam $*" >&2
+exec "$build/bin/range_bearing_slam" "$@"
