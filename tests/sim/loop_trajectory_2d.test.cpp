@@ -1,5 +1,7 @@
 #include "sylva_catch.hpp"
 
+#include "error_helpers.hpp"
+
 #include <cmath>
 
 #include "sylva/sim/loop_trajectory_2d.hpp"
@@ -13,15 +15,7 @@ using sylva::sim::Rng;
 
 namespace {
 
-template <typename F>
-bool throwsCode(F&& f, ErrorCode code) {
-  try {
-    f();
-  } catch (const sylva::Error& e) {
-    return e.code() == code;
-  }
-  return false;
-}
+using sylva_test::throwsCode;
 
 }  // namespace
 

@@ -1,5 +1,7 @@
 #include "sylva_catch.hpp"
 
+#include "error_helpers.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -12,15 +14,7 @@ using sylva::sim::Rng;
 
 namespace {
 
-template <typename F>
-bool throwsCode(F&& f, ErrorCode code) {
-  try {
-    f();
-  } catch (const sylva::Error& e) {
-    return e.code() == code;
-  }
-  return false;
-}
+using sylva_test::throwsCode;
 
 }  // namespace
 

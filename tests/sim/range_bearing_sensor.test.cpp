@@ -1,5 +1,7 @@
 #include "sylva_catch.hpp"
 
+#include "error_helpers.hpp"
+
 #include <cmath>
 #include <map>
 
@@ -15,15 +17,7 @@ using sylva::sim::TrueLandmark2D;
 
 namespace {
 
-template <typename F>
-bool throwsCode(F&& f, ErrorCode code) {
-  try {
-    f();
-  } catch (const sylva::Error& e) {
-    return e.code() == code;
-  }
-  return false;
-}
+using sylva_test::throwsCode;
 
 std::vector<TrueLandmark2D> grid(double half, double step) {
   std::vector<TrueLandmark2D> out;
