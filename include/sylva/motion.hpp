@@ -1,4 +1,5 @@
 #pragma once
 // IWYU pragma: begin_exports
+#include "sylva/motion/constant_velocity_3d.hpp"
 #include "sylva/motion/unicycle_2d.hpp"
 // IWYU pragma: end_exports

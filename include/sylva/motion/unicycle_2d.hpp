@@ -55,6 +55,20 @@ struct Unicycle2D {
     return next;
   }
 
+  /// The motion with noise `n` added to the control, generic in the scalar (what J_n is the
+  /// derivative of).
+  template <typename T>
+  Vec<3, T> propagate(const Vec<3, T>& x, const Vec<2, T>& u, const Vec<2, T>& n, double dt) const {
+    using std::cos;
+    using std::sin;
+    const T v = u[0] + n[0];
+    const T omega = u[1] + n[1];
+    const T heading = x[2] + T(0.5 * dt) * omega;
+    Vec<3, T> next;
+    next << x[0] + T(dt) * v * cos(heading), x[1] + T(dt) * v * sin(heading), wrapAngle(T(x[2] + T(dt) * omega));
+    return next;
+  }
+
   /// Brings a state back to its canonical range (theta in (-pi, pi]).
   static void normalize(Eigen::Ref<State> x) { x[2] = wrapAngle(x[2]); }
 

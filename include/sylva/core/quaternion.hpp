@@ -1,0 +1,56 @@
+#pragma once
+/// @file
+/// Quaternion helpers on plain 4-vectors q = (w, x, y, z), generic in the scalar so models
+/// built on them can be differentiated automatically. Hamilton product, active rotation:
+/// p' = R(q) p = q (0, p) q*.
+
+#include <cmath>
+
+#include "sylva/core/scalar.hpp"
+#include "sylva/core/types.hpp"
+
+namespace sylva {
+
+/// Hamilton product a * b.
+template <typename T>
+Vec<4, T> quaternionProduct(const Vec<4, T>& a, const Vec<4, T>& b) {
+  Vec<4, T> c;
+  c[0] = a[0] * b[0] - a[1] * b[1] - a[2] * b[2] - a[3] * b[3];
+  c[1] = a[0] * b[1] + a[1] * b[0] + a[2] * b[3] - a[3] * b[2];
+  c[2] = a[0] * b[2] - a[1] * b[3] + a[2] * b[0] + a[3] * b[1];
+  c[3] = a[0] * b[3] + a[1] * b[2] - a[2] * b[1] + a[3] * b[0];
+  return c;
+}
+
+/// Unit quaternion of the rotation vector theta (axis * angle, radians): the exponential map.
+/// Below 1e-8 rad a Taylor expansion keeps value and derivatives finite.
+template <typename T>
+Vec<4, T> quaternionFromRotationVector(const Vec<3, T>& theta) {
+  using std::cos;
+  using std::sin;
+  using std::sqrt;
+  const T angle2 = theta.squaredNorm();
+  Vec<4, T> q;
+  if (scalarValue(angle2) < 1e-16) {
+    q[0] = T(1.0) - angle2 / T(8.0);
+    q.template tail<3>() = theta * (T(0.5) - angle2 / T(48.0));
+  } else {
+    const T angle = sqrt(angle2);
+    q[0] = cos(angle / T(2.0));
+    q.template tail<3>() = theta * (sin(angle / T(2.0)) / angle);
+  }
+  return q;
+}
+
+/// Rotation matrix of a unit quaternion (w, x, y, z).
+template <typename T>
+Mat<3, 3, T> rotationMatrix(const Vec<4, T>& q) {
+  const T w = q[0], x = q[1], y = q[2], z = q[3];
+  Mat<3, 3, T> R;
+  R << T(1) - T(2) * (y * y + z * z), T(2) * (x * y - w * z), T(2) * (x * z + w * y),  //
+      T(2) * (x * y + w * z), T(1) - T(2) * (x * x + z * z), T(2) * (y * z - w * x),    //
+      T(2) * (x * z - w * y), T(2) * (y * z + w * x), T(1) - T(2) * (x * x + y * y);
+  return R;
+}
+
+}  // namespace sylva

@@ -1,0 +1,92 @@
+// ConstantVelocity3D: the constant-velocity camera motion with quaternion renormalization.
+
+#include <sylva/filter/ekf.hpp>
+#include <sylva/motion/constant_velocity_3d.hpp>
+#include <sylva/testing/check_jacobians.hpp>
+
+#include "sylva_catch.hpp"
+
+using namespace sylva;
+
+namespace {
+Vec<13> cameraState(const Vec<3>& r, const Vec<4>& q, const Vec<3>& v, const Vec<3>& omega) {
+  Vec<13> x;
+  x << r, q, v, omega;
+  return x;
+}
+const Vec<4> kIdentity(1.0, 0.0, 0.0, 0.0);
+}  // namespace
+
+TEST_CASE("ConstantVelocity3D moves at constant velocity and rotates by omega dt", "[motion]") {
+  const ConstantVelocity3D motion;
+  // Straight line.
+  const Vec<13> x = cameraState(Vec<3>(1, 2, 3), kIdentity, Vec<3>(0.5, -1.0, 2.0), Vec<3>::Zero());
+  const Vec<13> next = motion(x, Vec<0>(), 0.2);
+  CHECK((next.head<3>() - Vec<3>(1.1, 1.8, 3.4)).norm() < 1e-15);
+  CHECK(next.segment<4>(3) == kIdentity);
+  CHECK(next.tail<6>() == x.tail<6>());
+  // Turning about the camera's y axis at 0.5 rad/s for 2 s: a rotation of 1 rad.
+  const Vec<13> turning = cameraState(Vec<3>::Zero(), kIdentity, Vec<3>::Zero(), Vec<3>(0.0, 0.5, 0.0));
+  const Vec<4> q = motion(turning, Vec<0>(), 2.0).segment<4>(3);
+  CHECK(q[0] == Approx(std::cos(0.5)));
+  CHECK(q[2] == Approx(std::sin(0.5)));
+  const Mat<3, 3> R = rotationMatrix<double>(q);
+  CHECK(R(0, 0) == Approx(std::cos(1.0)));
+  CHECK(R(0, 2) == Approx(std::sin(1.0)));
+}
+
+TEST_CASE("ConstantVelocity3D keeps the quaternion normalized", "[motion]") {
+  const ConstantVelocity3D motion;
+  Vec<13> x = cameraState(Vec<3>::Zero(), Vec<4>(2.0, 0.4, -0.2, 1.0), Vec<3>(1, 0, 0), Vec<3>(0.3, -0.2, 0.9));
+  for (int k = 0; k < 1000; ++k) x = motion(x, Vec<0>(), 0.05);
+  CHECK(x.segment<4>(3).norm() == Approx(1.0).epsilon(1e-14));
+}
+
+TEST_CASE("ConstantVelocity3D Jacobians match numerical differentiation", "[motion][jacobian]") {
+  struct Case {
+    const char* name;
+    Vec<13> x;
+    double dt;
+  };
+  const Vec<4> q = Vec<4>(0.9, 0.1, -0.3, 0.2).normalized();
+  const Case cases[] = {
+      {"ordinary", cameraState(Vec<3>(1, 2, 3), q, Vec<3>(0.5, -0.2, 0.1), Vec<3>(0.1, 0.2, -0.3)), 0.1},
+      {"not rotating (exponential map at zero)", cameraState(Vec<3>(1, 2, 3), q, Vec<3>(0.5, 0, 0), Vec<3>::Zero()), 0.1},
+      {"half a turn in one step", cameraState(Vec<3>::Zero(), q, Vec<3>::Zero(), Vec<3>(0.0, 0.0, 3.0)), 1.0},
+      {"quaternion off the unit sphere", cameraState(Vec<3>::Zero(), 1.7 * q, Vec<3>(1, 1, 1), Vec<3>(0.2, 0.1, 0.0)), 0.1},
+      {"zero time step", cameraState(Vec<3>(4, 5, 6), q, Vec<3>(1, 1, 1), Vec<3>(0.2, 0.1, 0.0)), 0.0},
+  };
+  for (const Case& c : cases) {
+    INFO(c.name);
+    const auto report = testing::checkMotionJacobians(ConstantVelocity3D{}, c.x, Vec<0>(), c.dt, 1e-6);
+    INFO(report.message());
+    CHECK(report.ok);
+  }
+}
+
+TEST_CASE("ConstantVelocity3D rejects a zero quaternion", "[motion][errors]") {
+  using Catch::Matchers::Contains;
+  const Vec<13> x = cameraState(Vec<3>::Zero(), Vec<4>::Zero(), Vec<3>::Zero(), Vec<3>::Zero());
+  CHECK_THROWS_WITH(ConstantVelocity3D{}(x, Vec<0>(), 0.1), Contains("quaternion has norm 0"));
+}
+
+namespace {
+struct Point3Stub {
+  static constexpr int kDim = 3;
+  static constexpr const char* kName = "Point3Stub";
+};
+}  // namespace
+
+TEST_CASE("the filter predicts a camera with acceleration noise", "[motion][filter]") {
+  const Vec<13> x0 = cameraState(Vec<3>::Zero(), kIdentity, Vec<3>(1, 0, 0), Vec<3>(0, 0.1, 0));
+  Mat<13, 13> P0 = Mat<13, 13>::Zero();
+  P0.bottomRightCorner<6, 6>() = 0.01 * Mat<6, 6>::Identity();
+  Ekf<ConstantVelocity3D, Point3Stub> ekf(x0, P0);
+  const auto acceleration = Gaussian<6>::sigmas((Vec<6>() << 0.5, 0.5, 0.5, 0.2, 0.2, 0.2).finished());
+  for (int k = 0; k < 50; ++k) ekf.predict(Vec<0>(), 1.0 / 30.0, acceleration);
+  CHECK(ekf.robotMean().segment<4>(3).norm() == Approx(1.0));
+  CHECK(ekf.robotMean()[0] == Approx(50.0 / 30.0));
+  const Mat<13, 13> P = ekf.robotCovariance();
+  CHECK(Eigen::SelfAdjointEigenSolver<Mat<13, 13>>(P).eigenvalues().minCoeff() > -1e-12);
+  CHECK(P(0, 0) > 0.01);  // position uncertainty grew from the velocity uncertainty
+}
