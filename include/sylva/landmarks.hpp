@@ -1,4 +1,6 @@
 #pragma once
 // IWYU pragma: begin_exports
+#include "sylva/landmarks/inverse_depth.hpp"
 #include "sylva/landmarks/point2.hpp"
+#include "sylva/landmarks/point3.hpp"
 // IWYU pragma: end_exports

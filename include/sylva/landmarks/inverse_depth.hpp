@@ -1,0 +1,106 @@
+#pragma once
+/// @file
+/// `InverseDepth`: a point as seen from the camera position that first observed it
+/// (Civera, Davison, Montiel 2008, "Inverse depth parametrization for monocular SLAM"):
+///
+///   l = [ x0, y0, z0, theta, phi, rho ]      (anchor (m), azimuth, elevation (rad), 1/m)
+///   p = anchor + m(theta, phi) / rho,  m = [cos(phi) cos(theta), cos(phi) sin(theta), sin(phi)]
+///
+/// Angles are in the world frame (z up): theta is the azimuth about world z measured from
+/// world x, phi the elevation above the world x-y plane. (Civera et al. write m for a world
+/// frame whose y axis points down; the geometry is the same, the formula follows our axes.)
+/// `normalize` wraps theta to (-pi, pi]. rho > 0 in front of the anchor; a point at infinity
+/// has rho = 0, which the parametrization represents but the conversion to XYZ cannot.
+///
+/// `InverseDepthToPoint3` is the conversion for `Ekf::reparametrize`, and
+/// `inverseDepthLinearityIndex` the test of when to apply it (Civera, Davison, Montiel 2007,
+/// "Inverse depth to depth conversion for monocular SLAM", eq. 11-13: L = 4 sigma_d |cos a| / d,
+/// sigma_d = sigma_rho / rho^2; convert when L falls below a threshold, 0.1 in the paper).
+
+#include <cmath>
+#include <sstream>
+
+#include "sylva/core/angles.hpp"
+#include "sylva/core/error.hpp"
+#include "sylva/core/jacobian_ref.hpp"
+#include "sylva/core/types.hpp"
+#include "sylva/landmarks/point3.hpp"
+
+namespace sylva {
+
+struct InverseDepth {
+  static constexpr int kDim = 6;
+  static constexpr const char* kName = "InverseDepth";
+  using Mean = Vec<6>;
+
+  /// Unit direction m(theta, phi) in the world frame.
+  template <typename T>
+  static Vec<3, T> direction(const T& theta, const T& phi) {
+    using std::cos;
+    using std::sin;
+    Vec<3, T> m;
+    m << cos(phi) * cos(theta), cos(phi) * sin(theta), sin(phi);
+    return m;
+  }
+
+  /// Euclidean point anchor + m / rho (requires rho != 0).
+  template <typename T>
+  static Vec<3, T> point(const Vec<6, T>& l) {
+    return l.template head<3>() + direction<T>(l[3], l[4]) / l[5];
+  }
+
+  static void normalize(Eigen::Ref<Vec<6>> l) { l[3] = wrapAngle(l[3]); }
+};
+
+/// InverseDepth -> Point3 (independent of the robot): p = anchor + m(theta, phi) / rho.
+template <typename Robot_>
+struct InverseDepthToPoint3 {
+  using Robot = Robot_;
+  using From = InverseDepth;
+  using To = Point3;
+  static constexpr const char* kName = "InverseDepthToPoint3";
+
+  Vec<3> operator()(const Vec<Robot_::kDim>& /*robot*/,
+                    const Vec<6>& l,
+                    JacobianRef<3, Robot_::kDim> J_to_x = {},
+                    JacobianRef<3, 6> J_to_l = {}) const {
+    const double rho = l[5];
+    if (!(std::abs(rho) > 1e-12) || !l.allFinite()) {
+      std::ostringstream os;
+      os << "InverseDepthToPoint3: inverse depth " << rho << " 1/m is not usable for a Euclidean point";
+      fail(std::isfinite(rho) ? ErrorCode::kDegenerateGeometry : ErrorCode::kNonFinite, os.str());
+    }
+    const double ct = std::cos(l[3]), st = std::sin(l[3]);
+    const double cp = std::cos(l[4]), sp = std::sin(l[4]);
+    const Vec<3> m(cp * ct, cp * st, sp);
+    if (J_to_x) (*J_to_x).setZero();
+    if (J_to_l) {
+      (*J_to_l).template leftCols<3>().setIdentity();
+      (*J_to_l).col(3) = Vec<3>(-cp * st, cp * ct, 0.0) / rho;    // d m / d theta
+      (*J_to_l).col(4) = Vec<3>(-sp * ct, -sp * st, cp) / rho;    // d m / d phi
+      (*J_to_l).col(5) = -m / (rho * rho);
+    }
+    return l.head<3>() + m / rho;
+  }
+};
+
+/// Linearity index of an inverse-depth point seen from `camera_position`
+/// (Civera, Davison, Montiel 2007): L = 4 sigma_d |cos a| / d with d the distance from the
+/// camera to the point, a the angle between the rays from the anchor and from the camera,
+/// sigma_d = sigma_rho / rho^2. Small L: the Euclidean parametrization is linear enough.
+inline double inverseDepthLinearityIndex(const Vec<3>& camera_position, const Vec<6>& l, double sigma_rho) {
+  if (!camera_position.allFinite() || !l.allFinite() || !std::isfinite(sigma_rho) || sigma_rho < 0.0)
+    fail(ErrorCode::kNonFinite, "inverseDepthLinearityIndex: inputs must be finite, sigma_rho >= 0");
+  if (!(l[5] > 0.0))
+    fail(ErrorCode::kDegenerateGeometry, "inverseDepthLinearityIndex: inverse depth must be > 0");
+  const Vec<3> m = InverseDepth::direction<double>(l[3], l[4]);
+  const Vec<3> p = l.head<3>() + m / l[5];
+  const Vec<3> h = p - camera_position;
+  const double d = h.norm();
+  if (!(d > 0.0)) fail(ErrorCode::kDegenerateGeometry, "inverseDepthLinearityIndex: camera at the point");
+  const double cos_a = m.dot(h) / d;
+  const double sigma_d = sigma_rho / (l[5] * l[5]);
+  return 4.0 * sigma_d * std::abs(cos_a) / d;
+}
+
+}  // namespace sylva
