@@ -3,4 +3,5 @@
 #include "sylva/landmarks/inverse_depth.hpp"
 #include "sylva/landmarks/point2.hpp"
 #include "sylva/landmarks/point3.hpp"
+#include "sylva/landmarks/tree_xyzr.hpp"
 // IWYU pragma: end_exports

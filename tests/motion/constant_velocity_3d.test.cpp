@@ -90,3 +90,46 @@ TEST_CASE("the filter predicts a camera with acceleration noise", "[motion][filt
   CHECK(Eigen::SelfAdjointEigenSolver<Mat<13, 13>>(P).eigenvalues().minCoeff() > -1e-12);
   CHECK(P(0, 0) > 0.01);  // position uncertainty grew from the velocity uncertainty
 }
+
+namespace {
+/// Reads the camera quaternion directly (a test sensor; prediction only, so autodiff).
+struct QuaternionSensor {
+  using Robot = ConstantVelocity3D;
+  using Landmark = Point3Stub;
+  static constexpr int kDim = 4;
+  static constexpr const char* kName = "QuaternionSensor";
+  template <typename T>
+  Vec<4, T> predict(const Vec<13, T>& x, const Vec<3, T>& /*l*/) const {
+    return x.template segment<4>(3);
+  }
+};
+struct Point3StubInit {
+  using Robot = ConstantVelocity3D;
+  using Landmark = Point3Stub;
+  static constexpr int kMeasurementDim = 3;
+  static constexpr const char* kName = "Point3StubInit";
+  Vec<3> operator()(const Vec<13>&, const Vec<3>& z, JacobianRef<3, 13> J_l_x = {}, JacobianRef<3, 3> J_l_z = {}) const {
+    if (J_l_x) (*J_l_x).setZero();
+    if (J_l_z) (*J_l_z).setIdentity();
+    return z;
+  }
+};
+}  // namespace
+
+TEST_CASE("an update renormalizes the quaternion and projects its covariance", "[motion][filter]") {
+  const Vec<4> q = Vec<4>(0.9, 0.1, -0.3, 0.2).normalized();
+  const Vec<13> x0 = cameraState(Vec<3>::Zero(), q, Vec<3>::Zero(), Vec<3>::Zero());
+  Mat<13, 13> P0 = Mat<13, 13>::Identity() * 0.01;
+  P0.block<4, 4>(3, 3) = (Mat<4, 4>::Identity() - q * q.transpose()) * 0.01;  // tangent to the sphere
+  Ekf<ConstantVelocity3D, Point3Stub> ekf(x0, P0);
+  ekf.add(1, Point3StubInit{}, Vec<3>(1, 2, 3), Gaussian<3>::sigmas(Vec<3>::Constant(0.1)));
+  // A measured quaternion off the unit sphere pulls the mean off it before renormalization.
+  ekf.update(QuaternionSensor{}, 1, Vec<4>(1.2 * q + Vec<4>(0.0, 0.05, 0.0, 0.0)),
+             Gaussian<4>::sigmas(Vec<4>::Constant(0.05)));
+  const Vec<4> q_new = ekf.robotMean().segment<4>(3);
+  CHECK(q_new.norm() == Approx(1.0).epsilon(1e-14));
+  const Mat<13, 13> P = ekf.robotCovariance();
+  // No variance along the quaternion itself: the covariance lies in the sphere's tangent space.
+  CHECK(q_new.dot(P.block<4, 4>(3, 3) * q_new) < 1e-15);
+  CHECK(Eigen::SelfAdjointEigenSolver<Mat<13, 13>>(P).eigenvalues().minCoeff() > -1e-12);
+}

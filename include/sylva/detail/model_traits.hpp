@@ -41,6 +41,14 @@ struct HasNormalize<Param,
                     std::void_t<decltype(Param::normalize(
                         std::declval<Eigen::Ref<Vec<Param::kDim>>>()))>> : std::true_type {};
 
+template <typename Robot, typename = void>
+struct HasNormalizationJacobian : std::false_type {};
+template <typename Robot>
+struct HasNormalizationJacobian<
+    Robot,
+    std::void_t<decltype(Robot::normalizationJacobian(std::declval<const Vec<Robot::kDim>&>()))>>
+    : std::true_type {};
+
 /// z_hat = h(robot, landmark) and, when requested, its two Jacobians.
 template <typename Model>
 Vec<Model::kDim> evaluate(const Model& model,

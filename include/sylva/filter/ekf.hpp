@@ -182,19 +182,10 @@ class BasicEkf {
     if (!next.allFinite() || !F.allFinite() || !G.allFinite())
       fail(ErrorCode::kNonFinite, "Ekf::predict: motion model produced a non-finite state or Jacobian");
 
-    const RobotCovariance P_rr = robotCovariance();
-    RobotCovariance P_rr_next = F * P_rr * F.transpose() + G * noise.covariance() * G.transpose();
+    const RobotCovariance GQGt = G * noise.covariance() * G.transpose();
     // From here on nothing can fail.
     mean_.template head<kRobotDim>() = next;
-    cov_.template topLeftCorner<kRobotDim, kRobotDim>() = 0.5 * (P_rr_next + P_rr_next.transpose());
-    const int m = n_ - kRobotDim;
-    if (m > 0) {
-      // Lower storage holds P_mr (m x r); P_mr <- P_mr F^T  (eq. 2.27).
-      for (int row = kRobotDim; row < n_; ++row) {
-        const Vec<kRobotDim> p = cov_.row(row).template head<kRobotDim>().transpose();
-        cov_.row(row).template head<kRobotDim>() = (F * p).transpose();
-      }
-    }
+    transformRobotBlock(F, GQGt);  // eq. 2.27
   }
 
   // ---------------------------------------------------------------- update
@@ -647,9 +638,30 @@ class BasicEkf {
     normalizeAll();
   }
 
+  /// P_rr <- F P_rr F^T + added, P_mr <- P_mr F^T: the robot block and its cross-covariances
+  /// through a robot-only Jacobian F. O(n).
+  void transformRobotBlock(const Mat<kRobotDim, kRobotDim>& F, const RobotCovariance& added) {
+    const RobotCovariance P_rr = robotCovariance();
+    const RobotCovariance P_rr_next = F * P_rr * F.transpose() + added;
+    cov_.template topLeftCorner<kRobotDim, kRobotDim>() = 0.5 * (P_rr_next + P_rr_next.transpose());
+    // Lower storage holds P_mr (m x r).
+    for (int row = kRobotDim; row < n_; ++row) {
+      const Vec<kRobotDim> p = cov_.row(row).template head<kRobotDim>().transpose();
+      cov_.row(row).template head<kRobotDim>() = (F * p).transpose();
+    }
+  }
+
   /// Wraps angles etc. of the robot and of every landmark type that defines `normalize`.
+  /// A robot that also defines `normalizationJacobian(x)` (the camera's quaternion
+  /// renormalization) has its covariance carried through that Jacobian as well.
   void normalizeAll() {
-    detail::normalize<Robot>(mean_.template head<kRobotDim>());
+    if constexpr (detail::HasNormalizationJacobian<Robot>::value) {
+      const Mat<kRobotDim, kRobotDim> N = Robot::normalizationJacobian(robotMean());
+      detail::normalize<Robot>(mean_.template head<kRobotDim>());
+      transformRobotBlock(N, RobotCovariance::Zero());
+    } else {
+      detail::normalize<Robot>(mean_.template head<kRobotDim>());
+    }
     constexpr bool any = (detail::HasNormalize<Landmarks_>::value || ...);
     if constexpr (any) {
       for (const LandmarkSlot& s : slots_) normalizeSlot(s, std::index_sequence_for<Landmarks_...>());

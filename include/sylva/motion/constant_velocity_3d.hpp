@@ -93,6 +93,19 @@ struct ConstantVelocity3D {
     if (q_norm > 0.0) x.segment<4>(3) /= q_norm;
   }
 
+  /// Jacobian of `normalize` at x: identity but for the quaternion block (I - u u^T) / |q|,
+  /// u = q / |q|. The filter applies it to the covariance when it renormalizes after an update.
+  static Mat<13, 13> normalizationJacobian(const State& x) {
+    Mat<13, 13> N = Mat<13, 13>::Identity();
+    const Vec<4> q = x.segment<4>(3);
+    const double q_norm = q.norm();
+    if (q_norm > 0.0) {
+      const Vec<4> u = q / q_norm;
+      N.block<4, 4>(3, 3) = (Mat<4, 4>::Identity() - u * u.transpose()) / q_norm;
+    }
+    return N;
+  }
+
   /// Plain difference (the quaternion is compared componentwise).
   static State difference(const State& a, const State& b) { return a - b; }
 };

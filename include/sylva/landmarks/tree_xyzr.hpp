@@ -1,0 +1,18 @@
+#pragma once
+/// @file
+/// `TreeXYZR`: a tree trunk as the centre [x, y, z] of its base circle in the world frame
+/// and its trunk radius r (metres). The base circle lies in the plane z = const, parallel to
+/// the world x-y plane (z up). Additive perturbations. The "XYZ-R" parametrization of the
+/// tree-width thesis (Sec. 3.5); measured by `sylva::TreeWidth`.
+
+#include "sylva/core/types.hpp"
+
+namespace sylva {
+
+struct TreeXYZR {
+  static constexpr int kDim = 4;  ///< [x_m, y_m, z_m, radius_m]
+  static constexpr const char* kName = "TreeXYZR";
+  using Mean = Vec<4>;
+};
+
+}  // namespace sylva
