@@ -26,6 +26,7 @@
 
 #include <cmath>
 #include <sstream>
+#include <Eigen/Core>
 #include <unsupported/Eigen/AutoDiff>
 
 #include "sylva/core/error.hpp"
