@@ -21,6 +21,7 @@ enum class ErrorCode {
   kDegenerateGeometry,   ///< the model is undefined here (e.g. landmark at the sensor)
   kInvalidArgument,      ///< any other malformed argument (sizes, ranges)
   kMalformedData,        ///< a data file or stream could not be parsed
+  kOutOfDomain,          ///< an update would move a landmark out of its domain (radius <= 0)
 };
 
 inline const char* toString(ErrorCode code) {
@@ -34,6 +35,7 @@ inline const char* toString(ErrorCode code) {
     case ErrorCode::kDegenerateGeometry: return "degenerate geometry";
     case ErrorCode::kInvalidArgument: return "invalid argument";
     case ErrorCode::kMalformedData: return "malformed data";
+    case ErrorCode::kOutOfDomain: return "out of domain";
   }
   return "unknown error";
 }

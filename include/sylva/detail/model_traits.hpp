@@ -41,6 +41,17 @@ struct HasNormalize<Param,
                     std::void_t<decltype(Param::normalize(
                         std::declval<Eigen::Ref<Vec<Param::kDim>>>()))>> : std::true_type {};
 
+/// A parametrization may declare where its mean is meaningful:
+/// `static const char* domainViolation(const Vec<kDim>& l)` returns nullptr inside the
+/// domain and a short reason outside it (a tree radius <= 0). The filter rejects an update
+/// whose posterior would leave the domain.
+template <typename Param, typename = void>
+struct HasDomain : std::false_type {};
+template <typename Param>
+struct HasDomain<Param,
+                 std::void_t<decltype(Param::domainViolation(std::declval<const Vec<Param::kDim>&>()))>>
+    : std::true_type {};
+
 template <typename Robot, typename = void>
 struct HasNormalizationJacobian : std::false_type {};
 template <typename Robot>

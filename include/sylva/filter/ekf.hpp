@@ -217,7 +217,7 @@ class BasicEkf {
       fail(ErrorCode::kNotPositiveDefinite,
            nameOf<Model>() + ": innovation covariance S is not positive definite (landmark " +
                std::to_string(id) + ")");
-    // From here on nothing can fail.
+    // From here on only the posterior domain check can fail, before anything is written.
     applyGain<M>(PHt, llt, nu, noise.covariance(), [&](const auto& A, auto&& out) {
       out.noalias() = A.template middleCols<kRobotDim>(0) * lin.J_z_x.transpose();
       out.noalias() +=
@@ -366,6 +366,10 @@ class BasicEkf {
     const Vec<L> l = inverse(robotMean(), z, J_l_x, J_l_z);
     if (!l.allFinite() || !J_l_x.allFinite() || !J_l_z.allFinite())
       fail(ErrorCode::kNonFinite, std::string(InverseModel::kName) + ": initialization is not finite");
+    if constexpr (detail::HasDomain<Landmark>::value) {
+      if (const char* why = Landmark::domainViolation(l))
+        fail(ErrorCode::kOutOfDomain, std::string(InverseModel::kName) + ": landmark " + std::to_string(id) + ": " + why);
+    }
     const RobotCovariance P_rr = robotCovariance();
     Mat<L, L> P_ll = J_l_x * P_rr * J_l_x.transpose() + J_l_z * noise.covariance() * J_l_z.transpose();
     P_ll = (0.5 * (P_ll + P_ll.transpose())).eval();
@@ -406,58 +410,46 @@ class BasicEkf {
   /// Jacobians J_to_x and J_to_l; the covariance is carried through them:
   ///   P_new,c = J_to_x P_r,c + J_to_l P_l,c   for every other block c,
   ///   P_new,new = [J_to_x J_to_l] P_(r,l),(r,l) [J_to_x J_to_l]^T.
-  /// The landmark keeps its id; its block moves to the end of the state.
+  /// The landmark keeps its id; its block moves to the end of the state. O(n).
   template <typename Conversion>
   void reparametrize(Id id, const Conversion& conversion) {
     using From = typename Conversion::From;
     using To = typename Conversion::To;
-    constexpr int Lf = From::kDim;
-    constexpr int Lt = To::kDim;
     static_assert(kHolds<From> && kHolds<To>,
                   "both parametrizations of the conversion must be in the filter's Landmarks... list");
-    const std::size_t k = slotIndex(id);
     const LandmarkSlot s = typedSlot<From>(id, Conversion::kName);
-    Mat<Lt, kRobotDim> J_x;
-    Mat<Lt, Lf> J_l;
-    const Vec<Lf> old_mean = mean_.template segment<Lf>(s.offset);
-    const Vec<Lt> new_mean = conversion(robotMean(), old_mean, J_x, J_l);
-    if (!new_mean.allFinite() || !J_x.allFinite() || !J_l.allFinite())
-      fail(ErrorCode::kNonFinite, std::string(Conversion::kName) + ": conversion is not finite");
+    Mat<To::kDim, kRobotDim> J_x;
+    Mat<To::kDim, From::kDim> J_l;
+    const Vec<To::kDim> new_mean =
+        conversion(robotMean(), Vec<From::kDim>(mean_.template segment<From::kDim>(s.offset)), J_x, J_l);
+    replaceBlock<From, To>(s, new_mean, J_x, J_l, Mat<To::kDim, To::kDim>::Zero(), Conversion::kName);
+  }
 
-    // New block rows against every other column of the state, before anything moves.
-    const int rest = n_ - Lf;  // dimension of the state without the old block
-    Eigen::MatrixXd cross(Lt, rest);  // allocation: reparametrization is not a hot path
-    for (int c = 0, dest = 0; c < n_; ++c) {
-      if (c >= s.offset && c < s.offset + Lf) continue;
-      Vec<kRobotDim> p_rc;
-      for (int r = 0; r < kRobotDim; ++r) p_rc[r] = lowerAt(r, c);
-      Vec<Lf> p_lc;
-      for (int r = 0; r < Lf; ++r) p_lc[r] = lowerAt(s.offset + r, c);
-      cross.col(dest++) = J_x * p_rc + J_l * p_lc;
-    }
-    Mat<Lt, kRobotDim + Lf> J;
-    J << J_x, J_l;
-    Mat<kRobotDim + Lf, kRobotDim + Lf> P_joint;
-    P_joint << symmetricBlock<kRobotDim, kRobotDim>(0, 0), symmetricBlock<kRobotDim, Lf>(0, s.offset),
-        symmetricBlock<Lf, kRobotDim>(s.offset, 0), symmetricBlock<Lf, Lf>(s.offset, s.offset);
-    Mat<Lt, Lt> P_new = J * P_joint * J.transpose();
-    P_new = (0.5 * (P_new + P_new.transpose())).eval();
-    if (Lt > Lf) ensureCapacity(n_ - Lf + Lt);
-    // From here on nothing can fail.
-    eraseBlock(s.offset, Lf);
-    slots_.erase(slots_.begin() + static_cast<std::ptrdiff_t>(k));
-    for (std::size_t j = k; j < slots_.size(); ++j) {
-      slots_[j].offset -= Lf;
-      index_[slots_[j].id] = j;
-    }
-    const int off = n_;
-    mean_.template segment<Lt>(off) = new_mean;
-    detail::normalize<To>(mean_.template segment<Lt>(off));
-    cov_.block(off, 0, Lt, rest) = cross;
-    cov_.template block<Lt, Lt>(off, off) = P_new;
-    n_ += Lt;
-    index_[id] = slots_.size();
-    slots_.push_back(LandmarkSlot{id, typeIndexOf<To>(), off, Lt});
+  /// A conversion that also takes a fresh measurement `z` with noise `noise` (XYZ -> XYZ-R:
+  /// the radius comes from the tree's width in the image, thesis Sec. 3.3). The conversion
+  /// returns J_to_z as well, and the new block's covariance gains J_to_z R J_to_z^T; z is
+  /// independent of the state, so the cross-covariances are those of the plain overload.
+  template <typename Conversion>
+  void reparametrize(Id id,
+                     const Conversion& conversion,
+                     const Vec<Conversion::kMeasurementDim>& z,
+                     const Gaussian<Conversion::kMeasurementDim>& noise) {
+    using From = typename Conversion::From;
+    using To = typename Conversion::To;
+    constexpr int Z = Conversion::kMeasurementDim;
+    static_assert(kHolds<From> && kHolds<To>,
+                  "both parametrizations of the conversion must be in the filter's Landmarks... list");
+    const LandmarkSlot s = typedSlot<From>(id, Conversion::kName);
+    if (!z.allFinite()) fail(ErrorCode::kNonFinite, std::string(Conversion::kName) + ": measurement is not finite");
+    Mat<To::kDim, kRobotDim> J_x;
+    Mat<To::kDim, From::kDim> J_l;
+    Mat<To::kDim, Z> J_z;
+    const Vec<To::kDim> new_mean = conversion(
+        robotMean(), Vec<From::kDim>(mean_.template segment<From::kDim>(s.offset)), z, J_x, J_l, J_z);
+    if (!J_z.allFinite())
+      fail(ErrorCode::kNonFinite, std::string(Conversion::kName) + ": conversion is not finite");
+    const Mat<To::kDim, To::kDim> added = J_z * noise.covariance() * J_z.transpose();
+    replaceBlock<From, To>(s, new_mean, J_x, J_l, added, Conversion::kName);
   }
 
  private:
@@ -501,6 +493,62 @@ class BasicEkf {
       fail(ErrorCode::kWrongLandmarkType, who + ": landmark " + std::to_string(id) + " is a " +
                                               typeName(s.type_index) + ", not a " + Landmark::kName);
     return s;
+  }
+
+  // ---------------------------------------------------------------- reparametrization
+
+  /// Replaces slot `s` (type From) by a block of type To with mean `new_mean`, carrying the
+  /// covariance through [J_x J_l] and adding `added` to the new diagonal block.
+  template <typename From, typename To>
+  void replaceBlock(const LandmarkSlot s,
+                    const Vec<To::kDim>& new_mean,
+                    const Mat<To::kDim, kRobotDim>& J_x,
+                    const Mat<To::kDim, From::kDim>& J_l,
+                    const Mat<To::kDim, To::kDim>& added,
+                    const char* who) {
+    constexpr int Lf = From::kDim;
+    constexpr int Lt = To::kDim;
+    if (!new_mean.allFinite() || !J_x.allFinite() || !J_l.allFinite() || !added.allFinite())
+      fail(ErrorCode::kNonFinite, std::string(who) + ": conversion is not finite");
+    if constexpr (detail::HasDomain<To>::value) {
+      if (const char* why = To::domainViolation(new_mean))
+        fail(ErrorCode::kOutOfDomain, std::string(who) + ": landmark " + std::to_string(s.id) + ": " + why);
+    }
+    const std::size_t k = slotIndex(s.id);
+    // New block rows against every other column of the state, before anything moves.
+    const int rest = n_ - Lf;  // dimension of the state without the old block
+    Eigen::MatrixXd cross(Lt, rest);  // allocation: reparametrization is not a hot path
+    for (int c = 0, dest = 0; c < n_; ++c) {
+      if (c >= s.offset && c < s.offset + Lf) continue;
+      Vec<kRobotDim> p_rc;
+      for (int r = 0; r < kRobotDim; ++r) p_rc[r] = lowerAt(r, c);
+      Vec<Lf> p_lc;
+      for (int r = 0; r < Lf; ++r) p_lc[r] = lowerAt(s.offset + r, c);
+      cross.col(dest++) = J_x * p_rc + J_l * p_lc;
+    }
+    Mat<Lt, kRobotDim + Lf> J;
+    J << J_x, J_l;
+    Mat<kRobotDim + Lf, kRobotDim + Lf> P_joint;
+    P_joint << symmetricBlock<kRobotDim, kRobotDim>(0, 0), symmetricBlock<kRobotDim, Lf>(0, s.offset),
+        symmetricBlock<Lf, kRobotDim>(s.offset, 0), symmetricBlock<Lf, Lf>(s.offset, s.offset);
+    Mat<Lt, Lt> P_new = J * P_joint * J.transpose() + added;
+    P_new = (0.5 * (P_new + P_new.transpose())).eval();
+    if (Lt > Lf) ensureCapacity(n_ - Lf + Lt);
+    // From here on nothing can fail.
+    eraseBlock(s.offset, Lf);
+    slots_.erase(slots_.begin() + static_cast<std::ptrdiff_t>(k));
+    for (std::size_t j = k; j < slots_.size(); ++j) {
+      slots_[j].offset -= Lf;
+      index_[slots_[j].id] = j;
+    }
+    const int off = n_;
+    mean_.template segment<Lt>(off) = new_mean;
+    detail::normalize<To>(mean_.template segment<Lt>(off));
+    cov_.block(off, 0, Lt, rest) = cross;
+    cov_.template block<Lt, Lt>(off, off) = P_new;
+    n_ += Lt;
+    index_[s.id] = slots_.size();
+    slots_.push_back(LandmarkSlot{s.id, typeIndexOf<To>(), off, Lt});
   }
 
   // ---------------------------------------------------------------- storage
@@ -607,7 +655,10 @@ class BasicEkf {
       K = PHt;
       llt.matrixU().template solveInPlace<Eigen::OnTheRight>(K);
       llt.matrixL().template solveInPlace<Eigen::OnTheRight>(K);
-      mean_.head(n_).noalias() += K * nu;
+      auto delta = meanIncrement();
+      delta.noalias() = K * nu;
+      checkPosteriorDomain(delta);  // may throw; nothing of the filter is written yet
+      mean_.head(n_) += delta;
       // A = (I - K H) P = P - K (P H^T)^T on the full matrix.
       P.template triangularView<Eigen::StrictlyUpper>() = P.transpose();
       P.noalias() -= K * PHt.transpose();
@@ -623,7 +674,10 @@ class BasicEkf {
       // W = PHt L^-T (in place), x += W L^-1 nu, P -= W W^T on the lower triangle.
       llt.matrixU().template solveInPlace<Eigen::OnTheRight>(PHt);
       const Eigen::Matrix<double, M, 1> v = llt.matrixL().solve(nu);
-      mean_.head(n_).noalias() += PHt * v;
+      auto delta = meanIncrement();
+      delta.noalias() = PHt * v;
+      checkPosteriorDomain(delta);  // may throw; nothing of the filter is written yet
+      mean_.head(n_) += delta;
       if constexpr (M == Eigen::Dynamic) {
         // Batches: Eigen's blocked symmetric rank-k update of the lower triangle.
         P.template selfadjointView<Eigen::Lower>().rankUpdate(PHt, -1.0);
@@ -648,6 +702,45 @@ class BasicEkf {
     for (int row = kRobotDim; row < n_; ++row) {
       const Vec<kRobotDim> p = cov_.row(row).template head<kRobotDim>().transpose();
       cov_.row(row).template head<kRobotDim>() = (F * p).transpose();
+    }
+  }
+
+  /// Workspace for the mean increment of an update (grows only with the state).
+  Eigen::Map<Eigen::VectorXd> meanIncrement() {
+    if (delta_.size() < n_) delta_.resize(n_);
+    return Eigen::Map<Eigen::VectorXd>(delta_.data(), n_);
+  }
+
+  /// Throws kOutOfDomain if mean + delta would leave the domain of a landmark whose type
+  /// declares one (see detail::HasDomain). O(n); a no-op without such types.
+  template <typename Delta>
+  void checkPosteriorDomain(const Delta& delta) const {
+    constexpr bool any = (detail::HasDomain<Landmarks_>::value || ...);
+    if constexpr (any) {
+      for (const LandmarkSlot& s : slots_) checkSlotDomain(s, delta, std::index_sequence_for<Landmarks_...>());
+    }
+  }
+
+  template <typename Delta, std::size_t... I>
+  void checkSlotDomain(const LandmarkSlot& s, const Delta& delta, std::index_sequence<I...>) const {
+    (checkSlotDomainAs<Landmarks_>(s, delta, static_cast<int>(I)), ...);
+  }
+
+  template <typename Landmark, typename Delta>
+  void checkSlotDomainAs(const LandmarkSlot& s, const Delta& delta, int type_index) const {
+    if constexpr (detail::HasDomain<Landmark>::value) {
+      if (s.type_index != type_index) return;
+      constexpr int L = Landmark::kDim;
+      const Vec<L> posterior =
+          mean_.template segment<L>(s.offset) + delta.template segment<L>(s.offset);
+      if (const char* why = Landmark::domainViolation(posterior)) {
+        fail(ErrorCode::kOutOfDomain, std::string("update rejected: ") + Landmark::kName + " " +
+                                          std::to_string(s.id) + ": " + why);
+      }
+    } else {
+      (void)s;
+      (void)delta;
+      (void)type_index;
     }
   }
 
@@ -685,6 +778,7 @@ class BasicEkf {
   std::unordered_map<Id, std::size_t> index_;
   Eigen::VectorXd workspace_a_;
   Eigen::VectorXd workspace_b_;
+  Eigen::VectorXd delta_;
   Eigen::VectorXd batch_nu_;
   Eigen::MatrixXd batch_S_;
   Eigen::MatrixXd batch_R_;

@@ -3,7 +3,8 @@
 /// `TreeXYZR`: a tree trunk as the centre [x, y, z] of its base circle in the world frame
 /// and its trunk radius r (metres). The base circle lies in the plane z = const, parallel to
 /// the world x-y plane (z up). Additive perturbations. The "XYZ-R" parametrization of the
-/// tree-width thesis (Sec. 3.5); measured by `sylva::TreeWidth`.
+/// tree-width thesis (Sec. 3.5); measured by `sylva::TreeWidth`. The domain is r > 0: the
+/// filter rejects an update that would make a radius zero or negative (kOutOfDomain).
 
 #include "sylva/core/types.hpp"
 
@@ -13,6 +14,11 @@ struct TreeXYZR {
   static constexpr int kDim = 4;  ///< [x_m, y_m, z_m, radius_m]
   static constexpr const char* kName = "TreeXYZR";
   using Mean = Vec<4>;
+
+  /// nullptr for r > 0, else the reason (see detail::HasDomain).
+  static const char* domainViolation(const Vec<4>& l) {
+    return l[3] > 0.0 ? nullptr : "the trunk radius would become zero or negative";
+  }
 };
 
 }  // namespace sylva

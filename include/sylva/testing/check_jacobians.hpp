@@ -158,4 +158,35 @@ JacobianReport checkConversionJacobians(const Conversion& conversion,
   return report;
 }
 
+/// The same for a conversion that also takes a measurement z (`InverseTreeWidth`):
+/// J_to_x, J_to_l and J_to_z against central differences.
+template <typename Conversion, int R>
+JacobianReport checkMeasuredConversionJacobians(const Conversion& conversion,
+                                                const Vec<R>& robot,
+                                                const Vec<Conversion::From::kDim>& landmark,
+                                                const Vec<Conversion::kMeasurementDim>& z,
+                                                double tolerance = 1e-6) {
+  constexpr int F = Conversion::From::kDim;
+  constexpr int T = Conversion::To::kDim;
+  constexpr int Z = Conversion::kMeasurementDim;
+  Mat<T, R> J_x;
+  Mat<T, F> J_l;
+  Mat<T, Z> J_z;
+  conversion(robot, landmark, z, J_x, J_l, J_z);
+  const Mat<T, R> N_x = numericJacobian<T, R>(
+      [&](const Vec<R>& x) { return Vec<T>(conversion(x, landmark, z)); }, robot);
+  const Mat<T, F> N_l = numericJacobian<T, F>(
+      [&](const Vec<F>& l) { return Vec<T>(conversion(robot, l, z)); }, landmark);
+  const Mat<T, Z> N_z = numericJacobian<T, Z>(
+      [&](const Vec<Z>& zz) { return Vec<T>(conversion(robot, landmark, zz)); }, z);
+  JacobianReport report;
+  report.compare("J_to_x", J_x, N_x, tolerance);
+  bool ok = report.ok;
+  report.compare("J_to_l", J_l, N_l, tolerance);
+  ok = ok && report.ok;
+  report.compare("J_to_z", J_z, N_z, tolerance);
+  report.ok = report.ok && ok;
+  return report;
+}
+
 }  // namespace sylva::testing

@@ -127,6 +127,40 @@ struct DenseReferenceEkf {
     next.tail(T) = y;
     x = next;
   }
+
+  /// The same for a conversion that also takes a measurement z with covariance R: the new
+  /// block's covariance gains J_z R J_z^T.
+  template <typename Conversion>
+  void reparametrize(int offset,
+                     const Conversion& conversion,
+                     const Vec<Conversion::kMeasurementDim>& z,
+                     const Mat<Conversion::kMeasurementDim, Conversion::kMeasurementDim>& R) {
+    constexpr int F = Conversion::From::kDim;
+    constexpr int T = Conversion::To::kDim;
+    constexpr int Z = Conversion::kMeasurementDim;
+    const int n = dim();
+    Mat<T, kRobotDim> J_x;
+    Mat<T, F> J_l;
+    Mat<T, Z> J_z;
+    const Vec<T> y = conversion(x.template head<kRobotDim>().eval(), x.template segment<F>(offset).eval(), z,
+                                J_x, J_l, J_z);
+    // Full Jacobian of [state without block; y] w.r.t. [old state; z].
+    Eigen::MatrixXd J = Eigen::MatrixXd::Zero(n - F + T, n + Z);
+    for (int i = 0, r = 0; i < n; ++i)
+      if (i < offset || i >= offset + F) J(r++, i) = 1.0;
+    J.block(n - F, 0, T, kRobotDim) = J_x;
+    J.block(n - F, offset, T, F) = J_l;
+    J.block(n - F, n, T, Z) = J_z;
+    Eigen::MatrixXd P_star = Eigen::MatrixXd::Zero(n + Z, n + Z);
+    P_star.topLeftCorner(n, n) = P;
+    P_star.bottomRightCorner(Z, Z) = R;
+    P = J * P_star * J.transpose();
+    Eigen::VectorXd next(n - F + T);
+    for (int i = 0, r = 0; i < n; ++i)
+      if (i < offset || i >= offset + F) next[r++] = x[i];
+    next.tail(T) = y;
+    x = next;
+  }
 };
 
 }  // namespace sylva::testing

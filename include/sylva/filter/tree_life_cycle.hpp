@@ -1,0 +1,109 @@
+#pragma once
+/// @file
+/// `TreeLifeCycle`: the life cycle of a tree landmark in monocular SLAM (tree-width thesis,
+/// Sec. 3.5, Fig. 3.3): first seen as an inverse-depth point, converted to XYZ once its depth
+/// is known well enough, and to XYZ-R once its position is, with the radius from the inverse
+/// tree-width model (Sec. 3.3) and this frame's width measurement.
+///
+///   InverseDepth --[ToXyz rule]--> Point3 --[ToTree rule + width z]--> TreeXYZR
+///
+/// The switching rules are policies: any type with
+/// `template <class Filter> bool operator()(const Filter& ekf, Id id) const`. The defaults
+/// are `LinearityIndexBelow{0.1}` (Civera, Davison, Montiel 2007) and
+/// `PositionSigmaBelow{0.1 m}`. Write your own to switch on anything the filter exposes
+/// (number of frames, parallax, a relative uncertainty, ...).
+///
+/// Works with any `Ekf<ConstantVelocity3D, ...>` that holds InverseDepth, Point3 and
+/// TreeXYZR. To run without the tree-width sensor, simply never call `convertToTree`.
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include <Eigen/Eigenvalues>
+
+#include "sylva/core/error.hpp"
+#include "sylva/core/types.hpp"
+#include "sylva/landmarks/inverse_depth.hpp"
+#include "sylva/landmarks/point3.hpp"
+#include "sylva/landmarks/tree_xyzr.hpp"
+#include "sylva/measurements/inverse_tree_width.hpp"
+#include "sylva/measurements/pinhole_camera.hpp"
+#include "sylva/motion/constant_velocity_3d.hpp"
+#include "sylva/noise/gaussian.hpp"
+
+namespace sylva {
+
+/// Inverse depth -> XYZ when the linearity index of the point seen from the current camera
+/// position is below `threshold` (0.1 is the usual value). A point with rho <= 0 (at or
+/// beyond infinity) is not ready.
+struct LinearityIndexBelow {
+  double threshold = 0.1;
+
+  template <typename Filter>
+  bool operator()(const Filter& ekf, Id id) const {
+    const Vec<6> l = ekf.template landmarkMean<InverseDepth>(id);
+    if (!(l[5] > 0.0)) return false;
+    const double var_rho = ekf.template landmarkCovariance<InverseDepth>(id)(5, 5);
+    const double sigma_rho = std::sqrt(std::max(0.0, var_rho));
+    return inverseDepthLinearityIndex(ekf.robotMean().template head<3>(), l, sigma_rho) < threshold;
+  }
+};
+
+/// XYZ -> XYZ-R when the largest standard deviation of the position (the square root of the
+/// largest eigenvalue of its 3x3 covariance) is below `max_sigma_m`.
+struct PositionSigmaBelow {
+  double max_sigma_m = 0.1;
+
+  template <typename Filter>
+  bool operator()(const Filter& ekf, Id id) const {
+    const Mat<3, 3> P = ekf.template landmarkCovariance<Point3>(id);
+    const Eigen::SelfAdjointEigenSolver<Mat<3, 3>> eig(P, Eigen::EigenvaluesOnly);
+    return eig.eigenvalues().maxCoeff() < max_sigma_m * max_sigma_m;
+  }
+};
+
+template <typename ToXyz = LinearityIndexBelow, typename ToTree = PositionSigmaBelow>
+class TreeLifeCycle {
+ public:
+  /// `camera`: the intrinsics of the tree-width sensor (for the inverse model).
+  explicit TreeLifeCycle(const PinholeCamera& camera, ToXyz to_xyz = {}, ToTree to_tree = {})
+      : inverse_(camera), to_xyz_(to_xyz), to_tree_(to_tree) {}
+
+  const ToXyz& toXyzRule() const { return to_xyz_; }
+  const ToTree& toTreeRule() const { return to_tree_; }
+
+  /// Converts every inverse-depth landmark whose rule fires to XYZ (first arrow of Fig. 3.3,
+  /// covariance through InverseDepthToPoint3's Jacobian). Returns the converted ids.
+  template <typename Filter>
+  std::vector<Id> convertInverseDepth(Filter& ekf) const {
+    std::vector<Id> ready;
+    for (const auto& slot : ekf.slots()) {
+      if (ekf.template holds<InverseDepth>(slot.id) && to_xyz_(ekf, slot.id)) ready.push_back(slot.id);
+    }
+    for (Id id : ready) ekf.reparametrize(id, InverseDepthToPoint3<ConstantVelocity3D>{});
+    return ready;
+  }
+
+  /// Converts XYZ landmark `id`, observed in this frame with the tree-width measurement `z`
+  /// ([u, v, w], noise `noise`), to XYZ-R if its rule fires (second arrow of Fig. 3.3).
+  /// Returns true when it converted, false when the landmark is not (or no longer) XYZ or
+  /// its rule does not fire. Throws like `Ekf::reparametrize` (the filter is then
+  /// unchanged): unknown id, non-finite z, geometry in which the width gives no radius.
+  template <typename Filter>
+  bool convertToTree(Filter& ekf, Id id, const Vec<3>& z, const Gaussian<3>& noise) const {
+    if (!ekf.contains(id))
+      fail(ErrorCode::kUnknownId, "TreeLifeCycle: no landmark with id " + std::to_string(id));
+    if (!ekf.template holds<Point3>(id) || !to_tree_(ekf, id)) return false;
+    ekf.reparametrize(id, inverse_, z, noise);
+    return true;
+  }
+
+ private:
+  InverseTreeWidth inverse_;
+  ToXyz to_xyz_;
+  ToTree to_tree_;
+};
+
+}  // namespace sylva
