@@ -57,3 +57,48 @@ TEMPLATE_TEST_CASE("predict and a single update do not allocate in steady state"
   Eigen::internal::set_is_malloc_allowed(true);
   CHECK(g_allocations.load() - before == 0);
 }
+
+TEST_CASE("the monocular tree filter's predict and updates do not allocate in steady state", "[filter][allocation]") {
+  using Filter = Ekf<ConstantVelocity3D, InverseDepth, Point3, TreeXYZR>;
+  const PinholeCamera camera{500.0, 500.0, 320.0, 240.0, 640, 480};
+  // Camera 1.5 m above the ground looking along world +x: camera x = -y_W, y = -z_W, z = x_W.
+  Vec<13> x0 = Vec<13>::Zero();
+  x0.head<3>() = Vec<3>(0.0, 0.0, 1.5);
+  x0.segment<4>(3) = Vec<4>(0.5, -0.5, 0.5, -0.5);
+  x0.segment<3>(7) = Vec<3>(1.0, 0.0, 0.0);
+  Mat<13, 13> P0 = Mat<13, 13>::Identity() * 1e-4;
+  Filter ekf(x0, P0);
+  const PinholePoint<InverseDepth> id_model(camera);
+  const PinholePoint<Point3> xyz_model(camera);
+  const TreeWidth width_model(camera);
+  const InverseDepthInitialization init(camera);
+  const auto pixel = Gaussian<2>::sigmas(Vec<2>(1.0, 1.0));
+  const auto pixel_width = Gaussian<3>::sigmas(Vec<3>(1.0, 1.0, 1.0));
+  // 30 trees 6-15 m ahead: ids 0-9 stay inverse depth, 10-19 become XYZ, 20-29 XYZ-R.
+  std::vector<Vec<4>> trees;
+  for (int i = 0; i < 30; ++i) trees.emplace_back(6.0 + 0.3 * i, -3.0 + 0.2 * i, 0.0, 0.2 + 0.005 * i);
+  for (int i = 0; i < 30; ++i) {
+    const Vec<2> z = xyz_model(x0, Vec<3>(trees[i].head<3>()));
+    ekf.add(i, init, init.measurement(z), init.noise(pixel));
+  }
+  for (int i = 10; i < 30; ++i) ekf.reparametrize(i, InverseDepthToPoint3<ConstantVelocity3D>{});
+  for (int i = 20; i < 30; ++i) ekf.reparametrize(i, InverseTreeWidth(camera), width_model(x0, trees[i]), pixel_width);
+  const auto q = Gaussian<6>::sigmas(Vec<6>::Constant(0.5));
+  // Warm-up: sizes the workspaces.
+  ekf.predict(Vec<0>(), 0.05, q);
+  ekf.update(xyz_model, 10, xyz_model(ekf.robotMean(), ekf.landmarkMean<Point3>(10)), pixel);
+  ekf.update(width_model, 20, width_model(ekf.robotMean(), ekf.landmarkMean<TreeXYZR>(20)), pixel_width);
+
+  const long before = g_allocations.load();
+  Eigen::internal::set_is_malloc_allowed(false);
+  for (int step = 0; step < 10; ++step) {
+    ekf.predict(Vec<0>(), 0.05, q);
+    ekf.update(id_model, 3, id_model(ekf.robotMean(), ekf.landmarkMean<InverseDepth>(3)) + Vec<2>(0.3, -0.2), pixel);
+    ekf.update(xyz_model, 15, xyz_model(ekf.robotMean(), ekf.landmarkMean<Point3>(15)) + Vec<2>(-0.3, 0.2), pixel);
+    ekf.update(width_model, 25,
+               width_model(ekf.robotMean(), ekf.landmarkMean<TreeXYZR>(25)) + Vec<3>(0.2, 0.1, -0.2), pixel_width);
+  }
+  Eigen::internal::set_is_malloc_allowed(true);
+  CHECK(g_allocations.load() - before == 0);
+  CHECK(ekf.holds<TreeXYZR>(25));
+}

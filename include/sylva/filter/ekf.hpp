@@ -298,7 +298,7 @@ class BasicEkf {
   template <typename Model>
   Linearization<Model> linearize(const Model& model, Id id) const {
     checkModel<Model>();
-    const LandmarkSlot& s = typedSlot<typename Model::Landmark>(id, nameOf<Model>());
+    const LandmarkSlot& s = typedSlot<typename Model::Landmark>(id, Model::kName);
     Linearization<Model> lin;
     lin.landmark_offset = s.offset;
     lin.z_hat = detail::evaluate(model, robotMean(),
@@ -487,10 +487,10 @@ class BasicEkf {
   }
 
   template <typename Landmark>
-  const LandmarkSlot& typedSlot(Id id, const std::string& who) const {
+  const LandmarkSlot& typedSlot(Id id, const char* who) const {
     const LandmarkSlot& s = slots_[slotIndex(id)];
     if (s.type_index != typeIndexOf<Landmark>())
-      fail(ErrorCode::kWrongLandmarkType, who + ": landmark " + std::to_string(id) + " is a " +
+      fail(ErrorCode::kWrongLandmarkType, std::string(who) + ": landmark " + std::to_string(id) + " is a " +
                                               typeName(s.type_index) + ", not a " + Landmark::kName);
     return s;
   }
