@@ -1,0 +1,5 @@
+#pragma once
+// IWYU pragma: begin_exports
+#include "sylva/eval/map_errors.hpp"
+#include "sylva/eval/similarity.hpp"
+// IWYU pragma: end_exports
