@@ -4,9 +4,14 @@
 /// path and the robot driving it with noisy odometry, a landmark field along the path and a
 /// range-bearing sensor. Everything is reproducible bit for bit from one seed.
 // IWYU pragma: begin_exports
+#include "sylva/sim/bezier_loop_2d.hpp"
+#include "sylva/sim/forest_scenario.hpp"
+#include "sylva/sim/forest_trajectory.hpp"
 #include "sylva/sim/landmarks_2d.hpp"
 #include "sylva/sim/loop_path_2d.hpp"
 #include "sylva/sim/loop_trajectory_2d.hpp"
 #include "sylva/sim/random.hpp"
 #include "sylva/sim/range_bearing_sensor.hpp"
+#include "sylva/sim/tree_forest.hpp"
+#include "sylva/sim/tree_observer.hpp"
 // IWYU pragma: end_exports
