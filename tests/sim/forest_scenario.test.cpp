@@ -20,7 +20,8 @@ using sylva_test::throwsCode;
 TEST_CASE("forest statistics follow the options and the seed", "[sim][forest]") {
   ForestOptions options;
   options.x_min_m = options.y_min_m = -200.0;
-  options.x_max_m = options.y_max_m = 200.0;  // 100 x 100 cells
+  options.x_max_m = options.y_max_m = 200.0;
+  options.grid_spacing_m = 4.0;  // 100 x 100 cells
   Rng rng(1);
   const std::vector<Tree> trees = generateForest(options, rng);
   const double cells = 100.0 * 100.0;

@@ -35,10 +35,13 @@
 /// landmark is observable is the caller's decision (`PinholeCamera::contains`).
 ///
 /// Errors (`sylva::Error`): NaN or Inf in the camera state or the landmark, or a non-finite
-/// prediction -> kNonFinite. kDegenerateGeometry for a quaternion of norm < 1e-12, an inverse
-/// depth rho < 0, and a point (or, for InverseDepth, the ray) behind the camera or on the
+/// prediction -> kNonFinite. kDegenerateGeometry for a quaternion of norm < 1e-12 and a point
+/// (or, for InverseDepth, the ray) behind the camera or on the
 /// plane through its centre parallel to the image: Z <= 1e-6 max(|X|, |Y|, |Z|) (this also
 /// covers a Point3 at the camera centre, h = 0). |X / Z| and |Y / Z| are therefore below 1e6.
+/// An inverse depth rho < 0 is not rejected: a far point's estimate crosses zero while it
+/// settles (the prior rho0 = 0.1 +- 0.5 covers negative values), and the ray h stays well
+/// defined; refusing it would freeze the landmark for good. Only h's depth is checked.
 
 #include <algorithm>
 #include <cmath>
@@ -282,13 +285,6 @@ struct PinholePoint<InverseDepth> {
     for (int i = 0; i < 6; ++i) {
       if (!std::isfinite(scalarValue(l[i])))
         fail(ErrorCode::kNonFinite, std::string(kName) + ": the landmark is not finite");
-    }
-    const double rho = scalarValue(l[5]);
-    if (rho < 0.0) {
-      std::ostringstream os;
-      os << kName << ": inverse depth " << rho << " 1/m is negative (the point would be behind "
-         << "its anchor)";
-      fail(ErrorCode::kDegenerateGeometry, os.str());
     }
   }
 

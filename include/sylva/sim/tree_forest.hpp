@@ -28,7 +28,7 @@ namespace sylva::sim {
 struct ForestOptions {
   double x_min_m = -20.0, x_max_m = 20.0;  ///< extent of the grid
   double y_min_m = -20.0, y_max_m = 20.0;
-  double grid_spacing_m = 4.0;
+  double grid_spacing_m = 3.0;
   double presence_probability = 0.6;
   double jitter_sigma_m = 0.6;  ///< Gaussian jitter of a tree about its cell centre
   double radius_mean_m = 0.25;

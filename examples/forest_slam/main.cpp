@@ -1,0 +1,318 @@
+// forest_slam: monocular EKF-SLAM in a simulated forest, with and without the tree-width
+// sensor, on the same measurements (tree-width thesis, Ch. 3-4).
+//
+// The world (sylva::sim, thesis Sec. 4.1.1): trees on a 3 m grid over 40 m x 40 m, each cell
+// occupied with probability --density (about 85 trees by default), jittered by 0.6 m, radii ~ N(0.25 m, 0.07 m) on a
+// gently rolling ground; a camera 1.5 m above the ground drives a closed Bezier loop of
+// about 56 m through the forest --laps times (default 2) at 1 m/s, 10 frames per second,
+// looking ahead and 15 degrees down. In every frame it measures, for each tree whose whole
+// base ellipse is inside the 640 x 480 image (and, with occlusion on, that no nearer trunk
+// overlaps in u), [u, v, w]: the centre of the base ellipse and its width in pixels, with
+// Gaussian noise (--pixel-noise on u and v, --width-noise on w). Tree ids are the data
+// association.
+//
+// The filter (examples/forest_slam/monocular_tree_slam.hpp): Ekf<ConstantVelocity3D,
+// InverseDepth, Point3, TreeXYZR> starting at the true first camera state (the map frame),
+// with the true initial velocity known to 0.1 m/s. Trees start as inverse-depth points
+// (Civera et al. 2008), become XYZ when their linearity index drops below 0.1 and, in the
+// run with the tree-width sensor, XYZ-R (radius from InverseTreeWidth) once their position
+// sigma is below 0.1 m, after which TreeWidth updates use the width too. The run without
+// the sensor keeps them XYZ and uses only (u, v). Observations whose NIS exceeds the
+// chi-square gate of probability --gate (0.99999) are skipped.
+//
+// Evaluation (sylva::eval, thesis Sec. 4.1.2): the estimated map is aligned to the true one
+// by a similarity transform (Eigen::umeyama). landmark_error = e_l (eq. 4.2), the MEAN
+// SQUARED distance (m^2) of the aligned landmarks at the end of lap 1; trajectory_error =
+// e_t (eq. 4.12), the mean squared distance of the aligned camera positions over the last
+// lap, aligned with the final map. converged: e_l < 10 and e_t < 3 (Sec. 4.2).
+// radius_rmse_m: RMS error of the radii of the XYZ-R trees at the end, estimated radii
+// multiplied by the alignment's scale (the map's unit is arbitrary in monocular SLAM);
+// mean_true_radius_m: the mean true radius of the same trees.
+//
+// Output: a table (or --json), and one SVG per run (--svg-prefix) like the thesis' Fig. 4.9;
+// --forest-svg draws the generated forest and path (Fig. 4.1). Everything is reproducible
+// from the flags.
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <limits>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include <sylva/eval.hpp>
+#include <sylva/sim/forest_scenario.hpp>
+
+#include "forest_svg.hpp"
+#include "monocular_tree_slam.hpp"
+
+namespace {
+
+using forest_slam::MonocularTreeSlam;
+using forest_slam::TreeSlamOptions;
+using sylva::Id;
+using sylva::Mat;
+using sylva::Vec;
+
+struct RunResult {
+  std::string name;
+  double landmark_error = std::numeric_limits<double>::infinity();
+  double trajectory_error = std::numeric_limits<double>::infinity();
+  bool converged = false;
+  double radius_rmse_m = std::numeric_limits<double>::quiet_NaN();
+  double mean_true_radius_m = std::numeric_limits<double>::quiet_NaN();
+  int xyzr_trees = 0;
+  std::array<int, 3> by_type{0, 0, 0};
+  int rejected = 0;
+  double runtime_s = 0.0;
+  std::string failure;  ///< why an error could not be computed, if so
+};
+
+/// Euclidean position of every landmark that has one: [id, position].
+std::vector<std::pair<Id, Vec<3>>> landmarkPositions(const MonocularTreeSlam::Filter& ekf) {
+  std::vector<std::pair<Id, Vec<3>>> out;
+  for (const auto& s : ekf.slots()) {
+    if (ekf.holds<sylva::InverseDepth>(s.id)) {
+      const Vec<6> l = ekf.landmarkMean<sylva::InverseDepth>(s.id);
+      if (l[5] > 1e-6) out.emplace_back(s.id, sylva::InverseDepth::point<double>(l));
+    } else if (ekf.holds<sylva::Point3>(s.id)) {
+      out.emplace_back(s.id, ekf.landmarkMean<sylva::Point3>(s.id));
+    } else {
+      out.emplace_back(s.id, ekf.landmarkMean<sylva::TreeXYZR>(s.id).head<3>());
+    }
+  }
+  return out;
+}
+
+/// Aligns estimated landmark positions to the true trees; returns the transform and e_l.
+std::pair<sylva::eval::Similarity3, double> alignMap(const std::vector<std::pair<Id, Vec<3>>>& estimated,
+                                                     const sylva::sim::ForestScenario& scenario) {
+  std::vector<Vec<3>> est, truth;
+  for (const auto& [id, p] : estimated) {
+    est.push_back(p);
+    truth.push_back(scenario.tree(id).base);
+  }
+  const sylva::eval::Similarity3 T = sylva::eval::alignSimilarity(est, truth);
+  return {T, sylva::eval::meanSquaredError(T, est, truth)};
+}
+
+RunResult runSlam(const sylva::sim::ForestScenario& scenario,
+                  TreeSlamOptions options,
+                  bool use_width,
+                  int max_frames,
+                  const std::string& svg_path) {
+  options.use_width = use_width;
+  RunResult result;
+  result.name = use_width ? "with_width" : "without_width";
+  const auto& frames = scenario.frames;
+  const int n_frames = std::min<int>(static_cast<int>(frames.size()), max_frames > 0 ? max_frames : static_cast<int>(frames.size()));
+  Mat<13, 13> P0 = Mat<13, 13>::Zero();
+  P0.diagonal().segment<3>(0).setConstant(1e-8);
+  P0.diagonal().segment<4>(3).setConstant(1e-8);
+  P0.diagonal().segment<3>(7).setConstant(0.1 * 0.1);
+  P0.diagonal().segment<3>(10).setConstant(0.05 * 0.05);
+  MonocularTreeSlam slam(options, frames.front().state, P0);
+
+  std::vector<Vec<3>> estimated_path;
+  std::vector<std::pair<Id, Vec<3>>> end_of_lap1;
+  const int last_lap = frames[n_frames - 1].lap;
+  const auto start = std::chrono::steady_clock::now();
+  for (int k = 0; k < n_frames; ++k) {
+    const double dt = k == 0 ? 0.0 : frames[k].t_s - frames[k - 1].t_s;
+    result.rejected += slam.processFrame(dt, scenario.observations[k]).rejected;
+    estimated_path.push_back(slam.filter().robotMean().head<3>());
+    const bool lap1_ends = frames[k].lap == 0 && (k + 1 == n_frames || frames[k + 1].lap > 0);
+    if (lap1_ends) end_of_lap1 = landmarkPositions(slam.filter());
+  }
+  result.runtime_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const auto& ekf = slam.filter();
+  result.by_type = slam.countByType();
+
+  sylva::eval::Similarity3 final_alignment;
+  bool aligned = false;
+  try {
+    result.landmark_error = alignMap(end_of_lap1, scenario).second;
+    final_alignment = alignMap(landmarkPositions(ekf), scenario).first;
+    aligned = true;
+    std::vector<Vec<3>> est, truth;
+    for (int k = 0; k < n_frames; ++k) {
+      if (frames[k].lap != last_lap) continue;
+      est.push_back(estimated_path[k]);
+      truth.push_back(frames[k].state.head<3>());
+    }
+    result.trajectory_error = sylva::eval::meanSquaredError(final_alignment, est, truth);
+  } catch (const sylva::Error& e) {
+    result.failure = e.what();
+  }
+  result.converged = sylva::eval::ConvergenceCriteria{}.converged(result.landmark_error, result.trajectory_error);
+
+  double sum_sq = 0.0, sum_true = 0.0;
+  for (const auto& s : ekf.slots()) {
+    if (!ekf.holds<sylva::TreeXYZR>(s.id)) continue;
+    const double r_est = ekf.landmarkMean<sylva::TreeXYZR>(s.id)[3] * (aligned ? final_alignment.scale : 1.0);
+    const double r_true = scenario.tree(s.id).radius_m;
+    sum_sq += (r_est - r_true) * (r_est - r_true);
+    sum_true += r_true;
+    ++result.xyzr_trees;
+  }
+  if (result.xyzr_trees > 0) {
+    result.radius_rmse_m = std::sqrt(sum_sq / result.xyzr_trees);
+    result.mean_true_radius_m = sum_true / result.xyzr_trees;
+  }
+
+  if (!svg_path.empty()) {
+    forest_slam::ForestSvgData svg;
+    svg.title = std::string("forest_slam, ") + (use_width ? "with" : "without") + " the tree-width sensor";
+    char line[256];
+    std::snprintf(line, sizeof line, "landmark error e_l %.3f m^2, trajectory error e_t %.3f m^2, %s; %d trees XYZ-R, %d XYZ, %d inverse depth",
+                  result.landmark_error, result.trajectory_error, result.converged ? "converged" : "NOT converged",
+                  result.by_type[2], result.by_type[1], result.by_type[0]);
+    svg.subtitle_lines.push_back(line);
+    svg.subtitle_lines.push_back("estimates aligned to the truth by the similarity fitted to the final map (eq. 4.1-4.11)");
+    for (const auto& t : scenario.trees) svg.true_trees.push_back({t.base.head<2>(), t.radius_m});
+    for (int k = 0; k < n_frames; ++k) {
+      svg.true_path.push_back(frames[k].state.head<2>());
+      if (aligned) svg.estimated_path.push_back(final_alignment(estimated_path[k]).head<2>());
+    }
+    if (aligned) {
+      for (const auto& [id, p] : landmarkPositions(ekf)) {
+        const Vec<3> q = final_alignment(p);
+        if (ekf.holds<sylva::TreeXYZR>(id))
+          svg.estimated_trees.push_back({q.head<2>(), ekf.landmarkMean<sylva::TreeXYZR>(id)[3] * final_alignment.scale});
+        else
+          svg.estimated_points.push_back(q.head<2>());
+      }
+    }
+    forest_slam::writeForestSvg(svg_path, svg);
+  }
+  return result;
+}
+
+nlohmann::json toJson(const RunResult& r) {
+  auto number = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
+  nlohmann::json j;
+  j["landmark_error"] = number(r.landmark_error);
+  j["trajectory_error"] = number(r.trajectory_error);
+  j["converged"] = r.converged;
+  j["radius_rmse_m"] = number(r.radius_rmse_m);
+  j["mean_true_radius_m"] = number(r.mean_true_radius_m);
+  j["runtime_s"] = r.runtime_s;
+  j["trees_by_parametrization"] = {{"inverse_depth", r.by_type[0]}, {"xyz", r.by_type[1]}, {"xyzr", r.by_type[2]}};
+  j["rejected_observations"] = r.rejected;
+  if (!r.failure.empty()) j["failure"] = r.failure;
+  return j;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"forest_slam: monocular EKF-SLAM in a simulated forest, with and without the tree-width sensor"};
+  std::uint64_t seed = 1;
+  sylva::sim::ForestScenarioOptions scenario_options;
+  TreeSlamOptions slam_options;
+  bool no_occlusion = false;
+  bool json = false;
+  int max_frames = 0;
+  std::string svg_prefix = "forest_slam";
+  std::string forest_svg;
+  app.add_option("--seed", seed, "seed of the forest and of the measurement noise")->capture_default_str();
+  app.add_option("--pixel-noise", scenario_options.observer.sigma_px, "sigma of u and v (pixels), simulated and assumed by the filter")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--width-noise", scenario_options.observer.sigma_width_px, "sigma of the width w (pixels), simulated and assumed")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--density", scenario_options.forest.presence_probability, "probability that a 4 m grid cell holds a tree")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1.0));
+  app.add_flag("--no-occlusion", no_occlusion, "also measure trees hidden behind nearer trunks");
+  app.add_option("--laps", scenario_options.trajectory.laps, "laps of the loop (the thesis drives two)")->capture_default_str()->check(CLI::PositiveNumber);
+  app.add_option("--fx", scenario_options.camera.fx, "focal length u (pixels)")->capture_default_str();
+  app.add_option("--fy", scenario_options.camera.fy, "focal length v (pixels)")->capture_default_str();
+  app.add_option("--cx", scenario_options.camera.cx, "principal point u (pixels)")->capture_default_str();
+  app.add_option("--cy", scenario_options.camera.cy, "principal point v (pixels)")->capture_default_str();
+  app.add_option("--image-width", scenario_options.camera.width, "image width (pixels)")->capture_default_str();
+  app.add_option("--image-height", scenario_options.camera.height, "image height (pixels)")->capture_default_str();
+  app.add_option("--accel-noise", slam_options.linear_accel_sigma, "filter's linear acceleration sigma (m/s^2)")->capture_default_str();
+  app.add_option("--angular-accel-noise", slam_options.angular_accel_sigma, "filter's angular acceleration sigma (rad/s^2)")
+      ->capture_default_str();
+  app.add_option("--linearity-threshold", slam_options.linearity_threshold, "inverse depth -> XYZ below this linearity index")
+      ->capture_default_str();
+  app.add_option("--xyzr-sigma", slam_options.tree_position_sigma_m, "XYZ -> XYZ-R once the position sigma is below this (m)")
+      ->capture_default_str();
+  app.add_option("--gate", slam_options.gate_probability, "chi-square gate probability on each observation's NIS (0: off)")
+      ->capture_default_str();
+  app.add_option("--grid", scenario_options.forest.grid_spacing_m, "spacing of the forest's grid (m)")->capture_default_str();
+  app.add_option("--frames", max_frames, "stop after this many frames (0: all)")->capture_default_str();
+  app.add_flag("--json", json, "print the results as JSON");
+  app.add_option("--svg-prefix", svg_prefix, "write PREFIX_with_width.svg and PREFIX_without_width.svg (empty: none)")
+      ->capture_default_str();
+  app.add_option("--forest-svg", forest_svg, "also write the generated forest and path (top view) to this SVG");
+  CLI11_PARSE(app, argc, argv);
+  scenario_options.observer.occlusion = !no_occlusion;
+
+  try {
+    slam_options.camera = scenario_options.camera;
+    slam_options.pixel_sigma_px = std::max(scenario_options.observer.sigma_px, 0.1);
+    slam_options.width_sigma_px = std::max(scenario_options.observer.sigma_width_px, 0.1);
+    const sylva::sim::ForestScenario scenario = sylva::sim::makeForestScenario(scenario_options, seed);
+    if (!forest_svg.empty()) {
+      forest_slam::ForestSvgData svg;
+      svg.title = "forest_slam: the simulated forest and the camera's path (seed " + std::to_string(seed) + ")";
+      svg.subtitle_lines.push_back(std::to_string(scenario.trees.size()) + " trees, " + std::to_string(scenario.frames.size()) +
+                                   " frames; the dot marks the start");
+      for (const auto& t : scenario.trees) svg.true_trees.push_back({t.base.head<2>(), t.radius_m});
+      for (const auto& f : scenario.frames) svg.true_path.push_back(f.state.head<2>());
+      forest_slam::writeForestSvg(forest_svg, svg);
+    }
+    const auto svg_for = [&](const char* which) { return svg_prefix.empty() ? std::string() : svg_prefix + "_" + which + ".svg"; };
+    const RunResult with = runSlam(scenario, slam_options, true, max_frames, svg_for("with_width"));
+    const RunResult without = runSlam(scenario, slam_options, false, max_frames, svg_for("without_width"));
+
+    std::size_t observations = 0;
+    for (const auto& o : scenario.observations) observations += o.size();
+    if (json) {
+      nlohmann::json out;
+      out["seed"] = seed;
+      out["trees"] = scenario.trees.size();
+      out["frames"] = max_frames > 0 ? std::min<std::size_t>(max_frames, scenario.frames.size()) : scenario.frames.size();
+      out["mean_trees_per_frame"] = static_cast<double>(observations) / scenario.frames.size();
+      out["with_width"] = toJson(with);
+      out["without_width"] = toJson(without);
+      std::cout << out.dump(2) << "\n";
+    } else {
+      std::printf("forest_slam: %zu trees, %zu frames, %.1f trees measured per frame (seed %llu, occlusion %s)\n\n",
+                  scenario.trees.size(), scenario.frames.size(), static_cast<double>(observations) / scenario.frames.size(),
+                  static_cast<unsigned long long>(seed), no_occlusion ? "off" : "on");
+      std::printf("%-34s %14s %14s\n", "", "with width", "without width");
+      auto row = [](const char* label, double a, double b, const char* fmt) {
+        char sa[32], sb[32];
+        std::snprintf(sa, sizeof sa, fmt, a);
+        std::snprintf(sb, sizeof sb, fmt, b);
+        std::printf("%-34s %14s %14s\n", label, std::isfinite(a) ? sa : "-", std::isfinite(b) ? sb : "-");
+      };
+      row("landmark error e_l (m^2, lap 1)", with.landmark_error, without.landmark_error, "%.4f");
+      row("trajectory error e_t (m^2, last lap)", with.trajectory_error, without.trajectory_error, "%.4f");
+      std::printf("%-34s %14s %14s\n", "converged (e_l < 10, e_t < 3)", with.converged ? "yes" : "no", without.converged ? "yes" : "no");
+      row("radius RMS error (m, XYZ-R trees)", with.radius_rmse_m, without.radius_rmse_m, "%.4f");
+      row("mean true radius (m, same trees)", with.mean_true_radius_m, without.mean_true_radius_m, "%.4f");
+      row("trees XYZ-R at the end", with.by_type[2], without.by_type[2], "%.0f");
+      row("trees XYZ at the end", with.by_type[1], without.by_type[1], "%.0f");
+      row("trees inverse depth at the end", with.by_type[0], without.by_type[0], "%.0f");
+      row("observations refused", with.rejected, without.rejected, "%.0f");
+      row("run time (s)", with.runtime_s, without.runtime_s, "%.2f");
+      if (!svg_prefix.empty()) std::printf("\nmaps: %s, %s\n", svg_for("with_width").c_str(), svg_for("without_width").c_str());
+      for (const RunResult* r : {&with, &without})
+        if (!r->failure.empty()) std::printf("%s: no alignment: %s\n", r->name.c_str(), r->failure.c_str());
+    }
+  } catch (const sylva::Error& e) {
+    std::cerr << "forest_slam: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}
