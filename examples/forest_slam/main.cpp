@@ -22,7 +22,9 @@
 //
 // Evaluation (sylva::eval, thesis Sec. 4.1.2): the estimated map is aligned to the true one
 // by a similarity transform (Eigen::umeyama). landmark_error = e_l (eq. 4.2), the MEAN
-// SQUARED distance (m^2) of the aligned landmarks at the end of lap 1; trajectory_error =
+// SQUARED distance (m^2) of the aligned landmarks at the end of lap 1 (trees mapped in
+// Euclidean form, XYZ or XYZ-R; those still in inverse depth have no depth estimate yet and
+// are counted apart); trajectory_error =
 // e_t (eq. 4.12), the mean squared distance of the aligned camera positions over the last
 // lap, aligned with the final map. converged: e_l < 10 and e_t < 3 (Sec. 4.2).
 // radius_rmse_m: RMS error of the radii of the XYZ-R trees at the end, estimated radii
@@ -69,22 +71,21 @@ struct RunResult {
   int xyzr_trees = 0;
   std::array<int, 3> by_type{0, 0, 0};
   int rejected = 0;
+  int hypotheses = 0;
   double runtime_s = 0.0;
   std::string failure;  ///< why an error could not be computed, if so
 };
 
-/// Euclidean position of every landmark that has one: [id, position].
+/// Position of every landmark mapped in Euclidean form (XYZ or XYZ-R): [id, position].
+/// Trees still in inverse depth are left out: their depth is not yet observable (that is why
+/// they are still inverse depth), so the point at 1 / rho is not an estimate of where they are.
 std::vector<std::pair<Id, Vec<3>>> landmarkPositions(const MonocularTreeSlam::Filter& ekf) {
   std::vector<std::pair<Id, Vec<3>>> out;
   for (const auto& s : ekf.slots()) {
-    if (ekf.holds<sylva::InverseDepth>(s.id)) {
-      const Vec<6> l = ekf.landmarkMean<sylva::InverseDepth>(s.id);
-      if (l[5] > 1e-6) out.emplace_back(s.id, sylva::InverseDepth::point<double>(l));
-    } else if (ekf.holds<sylva::Point3>(s.id)) {
+    if (ekf.holds<sylva::Point3>(s.id))
       out.emplace_back(s.id, ekf.landmarkMean<sylva::Point3>(s.id));
-    } else {
+    else if (ekf.holds<sylva::TreeXYZR>(s.id))
       out.emplace_back(s.id, ekf.landmarkMean<sylva::TreeXYZR>(s.id).head<3>());
-    }
   }
   return out;
 }
@@ -124,7 +125,9 @@ RunResult runSlam(const sylva::sim::ForestScenario& scenario,
   const auto start = std::chrono::steady_clock::now();
   for (int k = 0; k < n_frames; ++k) {
     const double dt = k == 0 ? 0.0 : frames[k].t_s - frames[k - 1].t_s;
-    result.rejected += slam.processFrame(dt, scenario.observations[k]).rejected;
+    const forest_slam::FrameReport report = slam.processFrame(dt, scenario.observations[k]);
+    result.rejected += report.rejected;
+    result.hypotheses += report.hypotheses;
     estimated_path.push_back(slam.filter().robotMean().head<3>());
     const bool lap1_ends = frames[k].lap == 0 && (k + 1 == n_frames || frames[k + 1].lap > 0);
     if (lap1_ends) end_of_lap1 = landmarkPositions(slam.filter());
@@ -204,6 +207,7 @@ nlohmann::json toJson(const RunResult& r) {
   j["runtime_s"] = r.runtime_s;
   j["trees_by_parametrization"] = {{"inverse_depth", r.by_type[0]}, {"xyz", r.by_type[1]}, {"xyzr", r.by_type[2]}};
   j["rejected_observations"] = r.rejected;
+  j["reanchored_frames"] = r.hypotheses;
   if (!r.failure.empty()) j["failure"] = r.failure;
   return j;
 }
@@ -216,6 +220,9 @@ int main(int argc, char** argv) {
   sylva::sim::ForestScenarioOptions scenario_options;
   TreeSlamOptions slam_options;
   bool no_occlusion = false;
+  double pixel_noise_scale = 1.0;
+  double frame_rate_hz = 1.0 / scenario_options.trajectory.dt_s;
+  double width_noise_scale = 1.0;
   bool json = false;
   int max_frames = 0;
   std::string svg_prefix = "forest_slam";
@@ -232,12 +239,23 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0.0, 1.0));
   app.add_flag("--no-occlusion", no_occlusion, "also measure trees hidden behind nearer trunks");
   app.add_option("--laps", scenario_options.trajectory.laps, "laps of the loop (the thesis drives two)")->capture_default_str()->check(CLI::PositiveNumber);
+  app.add_option("--frame-rate", frame_rate_hz, "camera frames per second")->capture_default_str()->check(CLI::PositiveNumber);
+  app.add_option("--speed", scenario_options.trajectory.speed_mps, "camera speed along the loop (m/s)")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
   app.add_option("--fx", scenario_options.camera.fx, "focal length u (pixels)")->capture_default_str();
   app.add_option("--fy", scenario_options.camera.fy, "focal length v (pixels)")->capture_default_str();
   app.add_option("--cx", scenario_options.camera.cx, "principal point u (pixels)")->capture_default_str();
   app.add_option("--cy", scenario_options.camera.cy, "principal point v (pixels)")->capture_default_str();
   app.add_option("--image-width", scenario_options.camera.width, "image width (pixels)")->capture_default_str();
   app.add_option("--image-height", scenario_options.camera.height, "image height (pixels)")->capture_default_str();
+  app.add_option("--pixel-noise-scale", pixel_noise_scale,
+                 "the filter assumes this multiple of the simulated sigma on u and v (the thesis' gain, Sec. 4.2)")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  app.add_option("--width-noise-scale", width_noise_scale, "the filter assumes this multiple of the simulated sigma on w")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
   app.add_option("--accel-noise", slam_options.linear_accel_sigma, "filter's linear acceleration sigma (m/s^2)")->capture_default_str();
   app.add_option("--angular-accel-noise", slam_options.angular_accel_sigma, "filter's angular acceleration sigma (rad/s^2)")
       ->capture_default_str();
@@ -255,11 +273,12 @@ int main(int argc, char** argv) {
   app.add_option("--forest-svg", forest_svg, "also write the generated forest and path (top view) to this SVG");
   CLI11_PARSE(app, argc, argv);
   scenario_options.observer.occlusion = !no_occlusion;
+  scenario_options.trajectory.dt_s = 1.0 / frame_rate_hz;
 
   try {
     slam_options.camera = scenario_options.camera;
-    slam_options.pixel_sigma_px = std::max(scenario_options.observer.sigma_px, 0.1);
-    slam_options.width_sigma_px = std::max(scenario_options.observer.sigma_width_px, 0.1);
+    slam_options.pixel_sigma_px = pixel_noise_scale * std::max(scenario_options.observer.sigma_px, 0.1);
+    slam_options.width_sigma_px = width_noise_scale * std::max(scenario_options.observer.sigma_width_px, 0.1);
     const sylva::sim::ForestScenario scenario = sylva::sim::makeForestScenario(scenario_options, seed);
     if (!forest_svg.empty()) {
       forest_slam::ForestSvgData svg;

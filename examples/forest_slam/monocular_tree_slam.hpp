@@ -9,11 +9,13 @@
 //        InverseDepth  PinholePoint<InverseDepth>   z = [u, v]
 //        Point3        PinholePoint<Point3>         z = [u, v]
 //        TreeXYZR      TreeWidth                    z = [u, v, w]   (with the width sensor)
-//      An observation whose prediction the model rejects (a point behind the estimated
-//      camera, ...) or whose NIS exceeds the chi-square gate (`gate_probability`, 0.99999 by
-//      default, 0 turns it off) is skipped and counted. If a batch is refused as a whole (its innovation
-//      covariance not positive definite, a radius pushed <= 0) its observations are fused one
-//      at a time and the refused ones are skipped and counted;
+//      Each observation is gated on its NIS at the predicted state (chi-square gate of
+//      probability `gate_probability`, 0.99999 by default; 0 turns it off). If fewer than half
+//      pass, the prediction is the suspect (a turn the constant-velocity model did not expect):
+//      the best few observations are tried alone on a copy of the filter and the one under
+//      which most others pass is fused first (one-point hypotheses, after Civera et al. 2010).
+//      Refused observations get a second chance against the updated estimate. A batch the
+//      filter refuses as a whole is fused one observation at a time;
 //   3. life cycle (`sylva::TreeLifeCycle`): inverse depth -> XYZ by the linearity index;
 //      with the width sensor, XYZ trees observed in this frame -> XYZ-R once their position
 //      is certain enough, with the radius from this frame's width (`InverseTreeWidth`);
@@ -26,7 +28,9 @@
 //
 // Used by examples/forest_slam/main.cpp and bench/forest_slam.cpp.
 
+#include <algorithm>
 #include <array>
+#include <limits>
 #include <cstddef>
 #include <vector>
 
@@ -71,7 +75,8 @@ struct FrameReport {
   int added = 0;      ///< new inverse-depth landmarks
   int to_xyz = 0;     ///< inverse depth -> XYZ conversions
   int to_tree = 0;    ///< XYZ -> XYZ-R conversions
-  int rejected = 0;   ///< observations or conversions refused by the filter or a model
+  int rejected = 0;   ///< observations or conversions refused by the filter, a model or the gate
+  int hypotheses = 0; ///< 1 when the frame was re-anchored on a one-point hypothesis
 };
 
 class MonocularTreeSlam {
@@ -94,7 +99,11 @@ class MonocularTreeSlam {
             (Vec<6>() << Vec<3>::Constant(options.linear_accel_sigma), Vec<3>::Constant(options.angular_accel_sigma))
                 .finished())),
         pixel_noise_(sylva::Gaussian<2>::sigmas(Vec<2>::Constant(options.pixel_sigma_px))),
-        tree_noise_(sylva::Gaussian<3>::sigmas(Vec<3>(options.pixel_sigma_px, options.pixel_sigma_px, options.width_sigma_px))) {}
+        tree_noise_(sylva::Gaussian<3>::sigmas(Vec<3>(options.pixel_sigma_px, options.pixel_sigma_px, options.width_sigma_px))) {
+    gate_.fill(std::numeric_limits<double>::infinity());
+    if (options.gate_probability > 0.0)
+      for (int dim = 1; dim <= 3; ++dim) gate_[dim] = sylva::chiSquareGate(dim, options.gate_probability);
+  }
 
   const Filter& filter() const { return ekf_; }
   const TreeSlamOptions& options() const { return options_; }
@@ -105,39 +114,25 @@ class MonocularTreeSlam {
     FrameReport report;
     ekf_.predict(Vec<0>(), dt, accel_noise_);
 
-    id_batch_.clear();
-    xyz_batch_.clear();
-    tree_batch_.clear();
     fresh_.clear();
+    mapped_.clear();
     for (const auto& o : observations) {
       const Vec<3> z = o.z;
-      if (!ekf_.contains(o.id)) {
-        fresh_.push_back({o.id, z});
-      } else if (ekf_.template holds<sylva::InverseDepth>(o.id)) {
-        if (predictable(id_point_, o.id, Vec<2>(z.head<2>()), pixel_noise_)) id_batch_.push_back({o.id, z.head<2>(), pixel_noise_});
-        else ++report.rejected;
-      } else if (ekf_.template holds<sylva::Point3>(o.id)) {
-        if (predictable(xyz_point_, o.id, Vec<2>(z.head<2>()), pixel_noise_)) xyz_batch_.push_back({o.id, z.head<2>(), pixel_noise_});
-        else ++report.rejected;
-        if (options_.use_width) seen_xyz_.push_back({o.id, z});
-      } else {
-        if (predictable(tree_width_, o.id, z, tree_noise_)) tree_batch_.push_back({o.id, z, tree_noise_});
-        else ++report.rejected;
-      }
+      (ekf_.contains(o.id) ? mapped_ : fresh_).push_back({o.id, z});
     }
-    fuse(id_point_, id_batch_, report);
-    fuse(xyz_point_, xyz_batch_, report);
-    fuse(tree_width_, tree_batch_, report);
+    fuseMapped(report);
 
     report.to_xyz = static_cast<int>(life_.convertInverseDepth(ekf_).size());
-    for (const Seen& s : seen_xyz_) {
-      try {
-        if (life_.convertToTree(ekf_, s.id, s.z, tree_noise_)) ++report.to_tree;
-      } catch (const sylva::Error&) {
-        ++report.rejected;
+    if (options_.use_width) {
+      for (const Seen& s : mapped_) {
+        if (!ekf_.template holds<sylva::Point3>(s.id)) continue;
+        try {
+          if (life_.convertToTree(ekf_, s.id, s.z, tree_noise_)) ++report.to_tree;
+        } catch (const sylva::Error&) {
+          ++report.rejected;
+        }
       }
     }
-    seen_xyz_.clear();
 
     for (const Seen& s : fresh_) {
       try {
@@ -162,18 +157,130 @@ class MonocularTreeSlam {
     Id id;
     Vec<3> z;
   };
+  struct Candidate {
+    Seen seen;
+    double nis;
+  };
 
-  template <typename Model>
-  bool predictable(const Model& model, Id id, const Vec<Model::kDim>& z, const sylva::Gaussian<Model::kDim>& noise) const {
+  static constexpr double kUnpredictable = std::numeric_limits<double>::infinity();
+  static constexpr int kMaxHypotheses = 5;
+
+  /// NIS of observation `s` against `ekf`'s current estimate through the model of the
+  /// landmark's parametrization (XYZ-R trees only with the width sensor); +inf when the model
+  /// cannot predict it (e.g. behind the estimated camera).
+  double nisOf(const Filter& ekf, const Seen& s) const {
     try {
-      if (options_.gate_probability <= 0.0) {
-        (void)ekf_.linearize(model, id);
-        return true;
-      }
-      return ekf_.innovation(model, id, z, noise).nis() < sylva::chiSquareGate(Model::kDim, options_.gate_probability);
+      if (ekf.template holds<sylva::InverseDepth>(s.id))
+        return ekf.innovation(id_point_, s.id, Vec<2>(s.z.head<2>()), pixel_noise_).nis();
+      if (ekf.template holds<sylva::Point3>(s.id))
+        return ekf.innovation(xyz_point_, s.id, Vec<2>(s.z.head<2>()), pixel_noise_).nis();
+      return ekf.innovation(tree_width_, s.id, s.z, tree_noise_).nis();
     } catch (const sylva::Error&) {
-      return false;
+      return kUnpredictable;
     }
+  }
+
+  /// True when the observation passes the chi-square gate (always, for a predictable one, with
+  /// the gate off).
+  bool passes(const Filter& ekf, const Seen& s) const { return withinGate(ekf, s.id, nisOf(ekf, s)); }
+
+  bool withinGate(const Filter& ekf, Id id, double nis) const {
+    if (!(nis < kUnpredictable)) return false;
+    return nis < gate_[ekf.template holds<sylva::TreeXYZR>(id) ? 3 : 2];
+  }
+
+  /// Fuses observation `s` alone into `ekf` (throws like Ekf::update).
+  void fuseOne(Filter& ekf, const Seen& s) const {
+    if (ekf.template holds<sylva::InverseDepth>(s.id))
+      ekf.update(id_point_, s.id, Vec<2>(s.z.head<2>()), pixel_noise_);
+    else if (ekf.template holds<sylva::Point3>(s.id))
+      ekf.update(xyz_point_, s.id, Vec<2>(s.z.head<2>()), pixel_noise_);
+    else
+      ekf.update(tree_width_, s.id, s.z, tree_noise_);
+  }
+
+  /// Fuses the observations of mapped trees. Each is gated on its NIS at the predicted
+  /// state. When fewer than half of the predictable ones pass, the prediction itself is
+  /// suspect (a turn the motion model did not expect), not the measurements: one-point
+  /// hypotheses as in Civera et al. 2010 ("1-point RANSAC for EKF filtering") try the best
+  /// few observations alone on a copy of the filter and keep the one under which most of the
+  /// others pass the gate, if it explains more of them than the prediction did. The passing
+  /// observations are then fused in one batch per model; those refused get a second chance
+  /// against the updated estimate.
+  void fuseMapped(FrameReport& report) {
+    candidates_.clear();
+    for (const Seen& s : mapped_) {
+      const double nis = nisOf(ekf_, s);
+      if (nis < kUnpredictable) candidates_.push_back({s, nis});
+      else ++report.rejected;
+    }
+    if (candidates_.empty()) return;
+    accepted_.clear();
+    refused_.clear();
+    for (const Candidate& c : candidates_) (withinGate(ekf_, c.seen.id, c.nis) ? accepted_ : refused_).push_back(c.seen);
+
+    const bool gated = options_.gate_probability > 0.0;
+    if (gated && candidates_.size() >= 2 && 2 * accepted_.size() < candidates_.size()) {
+      std::sort(candidates_.begin(), candidates_.end(),
+                [](const Candidate& a, const Candidate& b) { return a.nis < b.nis; });
+      int best = -1;
+      std::size_t best_support = accepted_.size();
+      const int tries = std::min<int>(kMaxHypotheses, static_cast<int>(candidates_.size()));
+      for (int h = 0; h < tries; ++h) {
+        Filter trial = ekf_;
+        try {
+          fuseOne(trial, candidates_[h].seen);
+        } catch (const sylva::Error&) {
+          continue;
+        }
+        std::size_t support = 0;
+        for (int j = 0; j < static_cast<int>(candidates_.size()); ++j)
+          if (j != h && passes(trial, candidates_[j].seen)) ++support;
+        if (support > best_support) {
+          best_support = support;
+          best = h;
+        }
+      }
+      if (best >= 0) {
+        const Seen chosen = candidates_[best].seen;
+        fuseOne(ekf_, chosen);  // succeeded on the copy, so it succeeds here
+        ++report.fused;
+        ++report.hypotheses;
+        accepted_.clear();
+        refused_.clear();
+        for (const Candidate& c : candidates_) {
+          if (c.seen.id == chosen.id) continue;
+          (passes(ekf_, c.seen) ? accepted_ : refused_).push_back(c.seen);
+        }
+      }
+    }
+
+    fuseBatches(accepted_, report);
+    if (refused_.empty()) return;
+    second_chance_.clear();
+    for (const Seen& s : refused_) {
+      if (passes(ekf_, s)) second_chance_.push_back(s);
+      else ++report.rejected;
+    }
+    fuseBatches(second_chance_, report);
+  }
+
+  /// Fuses `observations` in one batched update per model.
+  void fuseBatches(const std::vector<Seen>& observations, FrameReport& report) {
+    id_batch_.clear();
+    xyz_batch_.clear();
+    tree_batch_.clear();
+    for (const Seen& s : observations) {
+      if (ekf_.template holds<sylva::InverseDepth>(s.id))
+        id_batch_.push_back({s.id, s.z.head<2>(), pixel_noise_});
+      else if (ekf_.template holds<sylva::Point3>(s.id))
+        xyz_batch_.push_back({s.id, s.z.head<2>(), pixel_noise_});
+      else
+        tree_batch_.push_back({s.id, s.z, tree_noise_});
+    }
+    fuse(id_point_, id_batch_, report);
+    fuse(xyz_point_, xyz_batch_, report);
+    fuse(tree_width_, tree_batch_, report);
   }
 
   template <typename Model>
@@ -209,8 +316,9 @@ class MonocularTreeSlam {
   std::vector<sylva::Observation<IdPoint>> id_batch_;
   std::vector<sylva::Observation<XyzPoint>> xyz_batch_;
   std::vector<sylva::Observation<sylva::TreeWidth>> tree_batch_;
-  std::vector<Seen> fresh_;
-  std::vector<Seen> seen_xyz_;
+  std::array<double, 4> gate_;  ///< chi-square gate by measurement dimension (2 and 3 used)
+  std::vector<Seen> fresh_, mapped_, accepted_, refused_, second_chance_;
+  std::vector<Candidate> candidates_;
 };
 
 }  // namespace forest_slam
