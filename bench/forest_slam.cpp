@@ -1,5 +1,5 @@
 /// @file
-/// Cost of monocular tree SLAM at the default forest size (examples/forest_slam, seed 1):
+/// Cost of monocular tree SLAM at the default forest size (examples/forest_slam, its default seed):
 /// the filter `Ekf<ConstantVelocity3D, InverseDepth, Point3, TreeXYZR>` as it stands after
 /// the first lap of the default scenario (about 70 trees mapped, state dimension ~300).
 ///
@@ -36,12 +36,9 @@ struct Setup {
   std::unique_ptr<MonocularTreeSlam> with_width, without_width;
   int next_frame = 0;
 
-  Setup() : scenario(sylva::sim::makeForestScenario(sylva::sim::ForestScenarioOptions{}, 1)) {
-    Mat<13, 13> P0 = Mat<13, 13>::Zero();
-    P0.diagonal().segment<3>(0).setConstant(1e-8);
-    P0.diagonal().segment<4>(3).setConstant(1e-8);
-    P0.diagonal().segment<3>(7).setConstant(0.01);
-    P0.diagonal().segment<3>(10).setConstant(0.0025);
+  Setup()
+      : scenario(sylva::sim::makeForestScenario(sylva::sim::ForestScenarioOptions{}, forest_slam::kDefaultForestSeed)) {
+    const Mat<13, 13> P0 = forest_slam::initialCameraCovariance();
     forest_slam::TreeSlamOptions options;
     options.use_width = true;
     with_width = std::make_unique<MonocularTreeSlam>(options, scenario.frames.front().state, P0);

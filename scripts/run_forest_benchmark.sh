@@ -29,7 +29,7 @@ out = ["# Monocular tree SLAM: cost of an update and of a frame", "",
        f"{med['BM_TreeWidthUpdate']['repetitions']} repetitions; {ctx.get('num_cpus')} CPUs at {ctx.get('mhz_per_cpu')} MHz, "
        f"sylva built in Release; the Debian Google Benchmark library reports itself as a {ctx.get('library_build_type')} build). Do not edit by hand.", "",
        "The filter is `Ekf<ConstantVelocity3D, InverseDepth, Point3, TreeXYZR>` as it stands at the end of lap 1 "
-       "of the default `forest_slam` scenario (seed 1): "
+       "of the default `forest_slam` scenario (its default seed): "
        f"{int(med['BM_TreeWidthUpdate']['landmarks'])} trees mapped, state dimension {int(med['BM_TreeWidthUpdate']['state_dim'])}; "
        f"the timed frame has {int(med['BM_FrameWithWidth']['trees_in_frame'])} trees in view. "
        "Times are wall-clock on a shared machine; compare the ratios, measured in the same run.", "",

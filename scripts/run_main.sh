@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
 # Builds sylva's main example on a fresh Debian 12 machine and runs it on its default
-# scenario: 2D range-bearing EKF-SLAM on a simulated loop (examples/range_bearing_slam).
+# scenario: monocular EKF-SLAM in a simulated forest, with and without the tree-width sensor
+# (examples/forest_slam).
 #
-#   bash scripts/run_main.sh                 default scenario
-#   bash scripts/run_main.sh --json --runs 20   extra arguments go to range_bearing_slam
-#                                            (--help lists them)
+#   bash scripts/run_main.sh                 default scenario; writes forest_slam_*.svg here
+#   bash scripts/run_main.sh --json          extra arguments go to forest_slam (--help lists them)
 #
 # Missing Debian packages are installed with apt-get (as root, or through sudo).
 # Environment: SYLVA_BUILD_ROOT (default <repo>/build) holds the build directory,
@@ -34,12 +34,12 @@ if ((${#missing[@]})); then
 fi
 
 # ---- configure and build (build output goes to stderr so that stdout is the program's) ----
-echo "==> building range_bearing_slam in $build" >&2
+echo "==> building forest_slam in $build" >&2
 cmake -S "$repo" -B "$build" -DCMAKE_BUILD_TYPE=Release \
   -DSYLVA_BUILD_TESTS=OFF -DSYLVA_BUILD_BENCHMARKS=OFF -DSYLVA_BUILD_EXAMPLES=ON \
   -DCMAKE_RUNTIME_OUTPUT_DIRECTORY="$build/bin" >&2
-cmake --build "$build" --target range_bearing_slam -j "$jobs" >&2
+cmake --build "$build" --target forest_slam -j "$jobs" >&2
 
 # ---- run ------------------------------------------------------------------------------------
-echo "==> $build/bin/range_bearing_slam $*" >&2
-exec "$build/bin/range_bearing_slam" "$@"
+echo "==> $build/bin/forest_slam $*" >&2
+exec "$build/bin/forest_slam" "$@"

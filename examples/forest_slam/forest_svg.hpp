@@ -74,7 +74,6 @@ inline void writeForestSvg(const std::string& path, const ForestSvgData& data) {
   const double scale = 760.0 / std::max(x1 - x0, y1 - y0);  // pixels per metre
   const double left = 20.0, top = 30.0 + 18.0 * (1 + data.subtitle_lines.size());
   const double width = left * 2 + (x1 - x0) * scale;
-  const double height = top + (y1 - y0) * scale + 70.0;
   auto px = [&](double x) { return left + (x - x0) * scale; };
   auto py = [&](double y) { return top + (y1 - y) * scale; };
   auto polyline = [&](const std::vector<sylva::Vec<2>>& pts) {
@@ -83,10 +82,7 @@ inline void writeForestSvg(const std::string& path, const ForestSvgData& data) {
     return os.str();
   };
 
-  std::ostringstream os;
-  os << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << num(width) << "\" height=\"" << num(height)
-     << "\" font-family=\"sans-serif\" font-size=\"13\">\n";
-  os << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
+  std::ostringstream os;  // everything but the <svg> element, whose height depends on the legend
   os << "<text x=\"" << num(left) << "\" y=\"20\" font-size=\"16\" font-weight=\"bold\">" << svg_detail::escape(data.title)
      << "</text>\n";
   for (std::size_t i = 0; i < data.subtitle_lines.size(); ++i)
@@ -132,6 +128,11 @@ inline void writeForestSvg(const std::string& path, const ForestSvgData& data) {
   double ly = top + (y1 - y0) * scale + 22.0;
   double lx = left;
   auto legend = [&](const std::string& swatch, const std::string& label) {
+    const double item = 30.0 + 7.0 * label.size();
+    if (lx > left && lx + item > width) {  // wrap to the next row
+      lx = left;
+      ly += 22.0;
+    }
     os << "<g transform=\"translate(" << num(lx) << "," << num(ly) << ")\">" << swatch << "<text x=\"22\" y=\"4\">"
        << svg_detail::escape(label) << "</text></g>\n";
     lx += 30.0 + 7.0 * label.size();
@@ -149,11 +150,14 @@ inline void writeForestSvg(const std::string& path, const ForestSvgData& data) {
      << "\" stroke=\"black\" stroke-width=\"3\"/>\n";
   os << "<text x=\"" << num(left + bar_m * scale + 8) << "\" y=\"" << num(ly + 4)
      << "\">5 m (grid 5 m; trunks drawn to scale, x right, y up)</text>\n";
-  os << "</svg>\n";
+  const double height = ly + 20.0;
 
   std::ofstream file(path);
   if (!file) sylva::fail(sylva::ErrorCode::kInvalidArgument, "writeForestSvg: cannot write '" + path + "'");
-  file << os.str();
+  file << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << num(width) << "\" height=\"" << num(height)
+       << "\" font-family=\"sans-serif\" font-size=\"13\">\n"
+       << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
+       << os.str() << "</svg>\n";
 }
 
 }  // namespace forest_slam

@@ -112,12 +112,7 @@ RunResult runSlam(const sylva::sim::ForestScenario& scenario,
   result.name = use_width ? "with_width" : "without_width";
   const auto& frames = scenario.frames;
   const int n_frames = std::min<int>(static_cast<int>(frames.size()), max_frames > 0 ? max_frames : static_cast<int>(frames.size()));
-  Mat<13, 13> P0 = Mat<13, 13>::Zero();
-  P0.diagonal().segment<3>(0).setConstant(1e-8);
-  P0.diagonal().segment<4>(3).setConstant(1e-8);
-  P0.diagonal().segment<3>(7).setConstant(0.1 * 0.1);
-  P0.diagonal().segment<3>(10).setConstant(0.05 * 0.05);
-  MonocularTreeSlam slam(options, frames.front().state, P0);
+  MonocularTreeSlam slam(options, frames.front().state, forest_slam::initialCameraCovariance());
 
   std::vector<Vec<3>> estimated_path;
   std::vector<std::pair<Id, Vec<3>>> end_of_lap1;
@@ -216,25 +211,26 @@ nlohmann::json toJson(const RunResult& r) {
 
 int main(int argc, char** argv) {
   CLI::App app{"forest_slam: monocular EKF-SLAM in a simulated forest, with and without the tree-width sensor"};
-  std::uint64_t seed = 1;
+  std::uint64_t seed = forest_slam::kDefaultForestSeed;
   sylva::sim::ForestScenarioOptions scenario_options;
   TreeSlamOptions slam_options;
   bool no_occlusion = false;
-  double pixel_noise_scale = 1.0;
+  // The filter assumes TreeSlamOptions' sigmas per pixel of simulated noise.
+  double pixel_noise_scale = slam_options.pixel_sigma_px;
+  double width_noise_scale = slam_options.width_sigma_px;
   double frame_rate_hz = 1.0 / scenario_options.trajectory.dt_s;
-  double width_noise_scale = 1.0;
   bool json = false;
   int max_frames = 0;
   std::string svg_prefix = "forest_slam";
   std::string forest_svg;
-  app.add_option("--seed", seed, "seed of the forest and of the measurement noise")->capture_default_str();
-  app.add_option("--pixel-noise", scenario_options.observer.sigma_px, "sigma of u and v (pixels), simulated and assumed by the filter")
+  app.add_option("--seed", seed, "seed of the forest and of the measurement noise (default: the representative forest, see docs/forest-slam-results.md)")->capture_default_str();
+  app.add_option("--pixel-noise", scenario_options.observer.sigma_px, "sigma of u and v (pixels) in the simulation (the filter assumes --pixel-noise-scale times it)")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
-  app.add_option("--width-noise", scenario_options.observer.sigma_width_px, "sigma of the width w (pixels), simulated and assumed")
+  app.add_option("--width-noise", scenario_options.observer.sigma_width_px, "sigma of the width w (pixels) in the simulation (the filter assumes --width-noise-scale times it)")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
-  app.add_option("--density", scenario_options.forest.presence_probability, "probability that a 4 m grid cell holds a tree")
+  app.add_option("--density", scenario_options.forest.presence_probability, "probability that a grid cell (--grid) holds a tree")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 1.0));
   app.add_flag("--no-occlusion", no_occlusion, "also measure trees hidden behind nearer trunks");
