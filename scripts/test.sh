@@ -4,7 +4,8 @@
 #   bash scripts/test.sh                 Release build of tests, examples and benchmarks;
 #                                        runs every test with ctest
 #   bash scripts/test.sh --sanitize      also builds and runs the tests under
-#                                        AddressSanitizer + UndefinedBehaviorSanitizer
+#                                        AddressSanitizer + UndefinedBehaviorSanitizer,
+#                                        with clang++ (SYLVA_SANITIZE_CXX picks another)
 #   bash scripts/test.sh --consumer      also installs sylva into a temporary prefix and
 #                                        builds and runs tests/consumer against it
 #   bash scripts/test.sh --skip-main     leaves out the Release phase (with the flags above)
@@ -12,13 +13,15 @@
 # Missing Debian packages are installed with apt-get (as root, or through sudo).
 # Environment: SYLVA_BUILD_ROOT (default <repo>/build) holds the build directories,
 # SYLVA_JOBS (default: number of cores) is the parallelism of builds and ctest.
+# The Release phase uses the default C++ compiler (g++ on Debian) so that the compiler most
+# users have builds everything; the sanitizer phase adds a second compiler.
 #
 # Examples and benchmarks are compiled in the Release phase so that CI notices when they
 # break; ctest runs them only where an example registers a cheap smoke run through
 # sylva_add_example_smoke_test() (see the top-level CMakeLists.txt), label "smoke".
 set -euo pipefail
 
-usage() { sed -n '2,18p' "$0" | sed 's/^# \{0,1\}//'; }
+usage() { sed -n '2,21p' "$0" | sed 's/^# \{0,1\}//'; }
 
 run_main=1
 run_sanitize=0

@@ -8,6 +8,9 @@
 #include "filter/test_models.hpp"
 #include "sylva_catch.hpp"
 
+// Own namespace: the tests of a folder are compiled as one unity translation unit.
+namespace unity_filter_bad_input {
+
 using namespace sylva;
 using sylva_test::InverseDistance2;
 using sylva_test::InverseDistanceFromRangeBearing;
@@ -193,3 +196,5 @@ TEST_CASE("construction validates the prior and the noise", "[filter][errors]") 
   CHECK_THROWS_WITH(Gaussian<2>::covariance(cov), Contains("not symmetric"));
   CHECK(Gaussian<2>::variances(Vec<2>(4.0, 9.0)).covariance() == Mat<2, 2>(Vec<2>(4.0, 9.0).asDiagonal()));
 }
+
+}  // namespace unity_filter_bad_input

@@ -10,6 +10,9 @@
 #include "filter/test_models.hpp"
 #include "sylva_catch.hpp"
 
+// Own namespace: the tests of a folder are compiled as one unity translation unit.
+namespace unity_filter_ekf {
+
 using namespace sylva;
 using sylva_test::InverseDistance2;
 using sylva_test::InverseDistanceFromRangeBearing;
@@ -259,3 +262,5 @@ TEST_CASE("typed access returns the blocks of the full covariance", "[filter]") 
   STATIC_REQUIRE(decltype(ekf)::typeIndexOf<InverseDistance2>() == 1);
   STATIC_REQUIRE(decltype(ekf)::kHolds<Point2>);
 }
+
+}  // namespace unity_filter_ekf

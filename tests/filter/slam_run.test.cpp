@@ -10,6 +10,9 @@
 
 #include "sylva_catch.hpp"
 
+// Own namespace: the tests of a folder are compiled as one unity translation unit.
+namespace unity_filter_slam_run {
+
 using namespace sylva;
 
 namespace {
@@ -120,3 +123,5 @@ TEST_CASE("robot-pose NEES over 50 runs: inside the 95% bounds when told the tru
   CHECK(told_less.mean() > hi);
   CHECK(told_less.fractionInside() < 0.2);
 }
+
+}  // namespace unity_filter_slam_run

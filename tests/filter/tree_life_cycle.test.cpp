@@ -13,6 +13,9 @@
 
 #include "error_helpers.hpp"
 
+// Own namespace: the tests of a folder are compiled as one unity translation unit.
+namespace unity_filter_tree_life_cycle {
+
 using namespace sylva;
 using sylva_test::throwsCode;
 
@@ -133,3 +136,5 @@ TEST_CASE("user-written switching rules plug into the life cycle", "[life_cycle]
   CHECK(ekf.holds<InverseDepth>(1));
   CHECK(ekf.holds<Point3>(4));
 }
+
+}  // namespace unity_filter_tree_life_cycle

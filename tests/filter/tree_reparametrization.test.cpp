@@ -19,6 +19,9 @@
 
 #include "error_helpers.hpp"
 
+// Own namespace: the tests of a folder are compiled as one unity translation unit.
+namespace unity_filter_tree_reparametrization {
+
 using namespace sylva;
 using sylva_test::throwsCode;
 
@@ -175,3 +178,5 @@ TEST_CASE("rejected tree reparametrizations and updates leave the filter unchang
   CHECK(joseph.mean() == mean2);
   CHECK(joseph.covariance() == cov2);
 }
+
+}  // namespace unity_filter_tree_reparametrization

@@ -75,6 +75,11 @@ TEST_CASE("the conversion rejects an inverse depth at infinity", "[landmarks][er
   using Catch::Matchers::Contains;
   CHECK_THROWS_WITH(ToPoint3{}(camera(Vec<3>::Zero()), inverseDepth(Vec<3>::Zero(), 0, 0, 0.0)),
                     Contains("not usable for a Euclidean point"));
+  // A negative inverse depth (the point behind its anchor) is refused too, before any output.
+  Mat<3, 6> J = Mat<3, 6>::Constant(7.0);
+  CHECK_THROWS_WITH(ToPoint3{}(camera(Vec<3>::Zero()), inverseDepth(Vec<3>::Zero(), 0, 0, -0.5), {}, J),
+                    Contains("must be > 0"));
+  CHECK(J == Mat<3, 6>::Constant(7.0));
   CHECK_THROWS_WITH(inverseDepthLinearityIndex(Vec<3>::Zero(), inverseDepth(Vec<3>::Zero(), 0, 0, -1.0), 0.1),
                     Contains("must be > 0"));
 }

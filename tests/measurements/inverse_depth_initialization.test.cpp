@@ -27,6 +27,9 @@
 
 #include "error_helpers.hpp"
 
+// Own namespace: the tests of a folder are compiled as one unity translation unit.
+namespace unity_measurements_inverse_depth_initialization {
+
 using namespace sylva;
 using sylva_test::throwsCode;
 
@@ -423,3 +426,5 @@ TEST_CASE("Monocular EKF: add and updates and the switch to XYZ equal the dense 
   CHECK((ekf.mean() - ref.x).cwiseAbs().maxCoeff() < 1e-10);
   CHECK((ekf.covariance() - ref.P).cwiseAbs().maxCoeff() < 1e-10);
 }
+
+}  // namespace unity_measurements_inverse_depth_initialization

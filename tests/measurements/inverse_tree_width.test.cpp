@@ -18,6 +18,9 @@
 
 #include "error_helpers.hpp"
 
+// Own namespace: the tests of a folder are compiled as one unity translation unit.
+namespace unity_measurements_inverse_tree_width {
+
 using namespace sylva;
 using sylva::sim::Rng;
 
@@ -195,3 +198,5 @@ TEST_CASE("InverseTreeWidth rejects invalid and degenerate input with a reason",
   const Vec<13> away = lookAt(Vec<3>(-6.0, 0.5, 1.5), Vec<3>(-12.0, 1.0, 0.0));
   CHECK(throwsCode([&] { inverse(away, base, z); }, ErrorCode::kDegenerateGeometry));
 }
+
+}  // namespace unity_measurements_inverse_tree_width

@@ -9,6 +9,9 @@
 
 #include "sylva_catch.hpp"
 
+// Own namespace: the tests of a folder are compiled as one unity translation unit.
+namespace unity_measurements_range_bearing {
+
 using namespace sylva;
 
 namespace {
@@ -98,3 +101,5 @@ TEST_CASE("degenerate and non-finite input is rejected with a reason", "[measure
   CHECK_THROWS_WITH(InverseRangeBearing{}(Vec<3>::Zero(), Vec<2>(-1.0, 0.0)), Contains("must be > 0"));
   CHECK_THROWS_WITH(InverseRangeBearing{}(Vec<3>::Zero(), Vec<2>(1.0, INFINITY)), Contains("not finite"));
 }
+
+}  // namespace unity_measurements_range_bearing

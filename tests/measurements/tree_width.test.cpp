@@ -23,6 +23,9 @@
 
 #include "error_helpers.hpp"
 
+// Own namespace: the tests of a folder are compiled as one unity translation unit.
+namespace unity_measurements_tree_width {
+
 using namespace sylva;
 
 namespace {
@@ -418,3 +421,5 @@ TEST_CASE("TreeWidth rejects degenerate geometry and bad input with a reason",
                                  ErrorCode::kDegenerateGeometry));
   }
 }
+
+}  // namespace unity_measurements_tree_width
