@@ -40,9 +40,9 @@ struct Setup {
       : scenario(sylva::sim::makeForestScenario(sylva::sim::ForestScenarioOptions{}, forest_slam::kDefaultForestSeed)) {
     const Mat<13, 13> P0 = forest_slam::initialCameraCovariance();
     forest_slam::TreeSlamOptions options;
-    options.use_width = true;
+    options.pipeline = forest_slam::WidthPipeline::kAfterXyz;
     with_width = std::make_unique<MonocularTreeSlam>(options, scenario.frames.front().state, P0);
-    options.use_width = false;
+    options.pipeline = forest_slam::WidthPipeline::kNone;
     without_width = std::make_unique<MonocularTreeSlam>(options, scenario.frames.front().state, P0);
     const auto& frames = scenario.frames;
     for (int k = 0; k < static_cast<int>(frames.size()) && frames[k].lap == 0; ++k) {

@@ -17,21 +17,9 @@ jobs="${SYLVA_JOBS:-$(nproc)}"
 
 # ---- dependencies (the library: Eigen; the example: CLI11, nlohmann_json, Boost.Math) ----
 packages=(build-essential cmake libeigen3-dev libboost-math-dev libcli11-dev nlohmann-json3-dev)
-missing=()
-for p in "${packages[@]}"; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
-done
-if ((${#missing[@]})); then
-  echo "==> installing missing Debian packages: ${missing[*]}" >&2
-  sudo_cmd=()
-  if [[ "$(id -u)" != 0 ]]; then
-    command -v sudo >/dev/null || { echo "run as root or install sudo" >&2; exit 1; }
-    sudo_cmd=(sudo)
-  fi
-  "${sudo_cmd[@]}" env DEBIAN_FRONTEND=noninteractive apt-get update >&2
-  "${sudo_cmd[@]}" env DEBIAN_FRONTEND=noninteractive \
-    apt-get install -y --no-install-recommends "${missing[@]}" >&2
-fi
+# shellcheck source=lib/install_packages.sh
+source "$repo/scripts/lib/install_packages.sh"
+sylva_install_packages "${packages[@]}"
 
 # ---- configure and build (build output goes to stderr so that stdout is the program's) ----
 echo "==> building forest_slam in $build" >&2

@@ -45,21 +45,9 @@ packages=(build-essential cmake libeigen3-dev catch2 libcli11-dev nlohmann-json3
           libboost-math-dev libbenchmark-dev)
 # The sanitizer build uses clang (and its sanitizer runtimes): see the phase below.
 if ((run_sanitize)) && [[ -z "${SYLVA_SANITIZE_CXX:-}" ]]; then packages+=(clang libclang-rt-dev); fi
-missing=()
-for p in "${packages[@]}"; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
-done
-if ((${#missing[@]})); then
-  echo "==> installing missing Debian packages: ${missing[*]}"
-  sudo_cmd=()
-  if [[ "$(id -u)" != 0 ]]; then
-    command -v sudo >/dev/null || { echo "run as root or install sudo" >&2; exit 1; }
-    sudo_cmd=(sudo)
-  fi
-  "${sudo_cmd[@]}" env DEBIAN_FRONTEND=noninteractive apt-get update
-  "${sudo_cmd[@]}" env DEBIAN_FRONTEND=noninteractive \
-    apt-get install -y --no-install-recommends "${missing[@]}"
-fi
+# shellcheck source=lib/install_packages.sh
+source "$repo/scripts/lib/install_packages.sh"
+sylva_install_packages "${packages[@]}"
 
 phase_start=0
 recap=()

@@ -1,5 +1,6 @@
 // forest_slam: monocular EKF-SLAM in a simulated forest, with and without the tree-width
-// sensor, on the same measurements (tree-width thesis, Ch. 3-4).
+// sensor, on the same measurements (tree-width thesis, Ch. 3-4), and a third pipeline beyond
+// the thesis that uses the width from a tree's first sight (inverse depth plus radius, IDR).
 //
 // The world (sylva::sim, thesis Sec. 4.1.1): trees on a 3 m grid over 40 m x 40 m, each cell
 // occupied with probability --density (about 85 trees by default), jittered by 0.6 m, radii ~ N(0.25 m, 0.07 m) on a
@@ -18,9 +19,11 @@
 // run with the tree-width sensor, XYZ-R (radius from InverseTreeWidth) once their position
 // sigma is below 0.1 m, after which TreeWidth updates use the width too. The run without
 // the sensor keeps them XYZ and uses only (u, v). Observations whose NIS exceeds the
-// chi-square gate of probability --gate (0.99999) are skipped.
+// chi-square gate of probability --gate (0.99999) are skipped. The third run
+// ("width_first_sight") starts each tree as InverseDepthRadius, fuses [u, v, w] from the first
+// frame and converts it straight to XYZ-R by the linearity rule.
 //
-// Evaluation (sylva::eval, thesis Sec. 4.1.2): the estimated map is aligned to the true one
+// Evaluation (forest_run.hpp; sylva::eval, thesis Sec. 4.1.2): the estimated map is aligned to the true one
 // by a similarity transform (Eigen::umeyama). landmark_error = e_l (eq. 4.2), the MEAN
 // SQUARED distance (m^2) of the aligned landmarks at the end of lap 1 (trees mapped in
 // Euclidean form, XYZ or XYZ-R; those still in inverse depth have no depth estimate yet and
@@ -50,6 +53,7 @@
 #include <sylva/eval.hpp>
 #include <sylva/sim/forest_scenario.hpp>
 
+#include "forest_run.hpp"
 #include "forest_svg.hpp"
 #include "monocular_tree_slam.hpp"
 
@@ -61,127 +65,54 @@ using sylva::Id;
 using sylva::Mat;
 using sylva::Vec;
 
-struct RunResult {
-  std::string name;
-  double landmark_error = std::numeric_limits<double>::infinity();
-  double trajectory_error = std::numeric_limits<double>::infinity();
-  bool converged = false;
-  double radius_rmse_m = std::numeric_limits<double>::quiet_NaN();
-  double mean_true_radius_m = std::numeric_limits<double>::quiet_NaN();
-  int xyzr_trees = 0;
-  std::array<int, 3> by_type{0, 0, 0};
-  int rejected = 0;
-  int hypotheses = 0;
-  double runtime_s = 0.0;
-  std::string failure;  ///< why an error could not be computed, if so
+using forest_slam::RunResult;
+using forest_slam::WidthPipeline;
+
+/// The three pipelines, in the order of the table's columns.
+struct PipelineRun {
+  WidthPipeline pipeline;
+  const char* key;    ///< JSON key and SVG suffix
+  const char* title;  ///< table column / SVG title
 };
-
-/// Position of every landmark mapped in Euclidean form (XYZ or XYZ-R): [id, position].
-/// Trees still in inverse depth are left out: their depth is not yet observable (that is why
-/// they are still inverse depth), so the point at 1 / rho is not an estimate of where they are.
-std::vector<std::pair<Id, Vec<3>>> landmarkPositions(const MonocularTreeSlam::Filter& ekf) {
-  std::vector<std::pair<Id, Vec<3>>> out;
-  for (const auto& s : ekf.slots()) {
-    if (ekf.holds<sylva::Point3>(s.id))
-      out.emplace_back(s.id, ekf.landmarkMean<sylva::Point3>(s.id));
-    else if (ekf.holds<sylva::TreeXYZR>(s.id))
-      out.emplace_back(s.id, ekf.landmarkMean<sylva::TreeXYZR>(s.id).head<3>());
-  }
-  return out;
-}
-
-/// Aligns estimated landmark positions to the true trees; returns the transform and e_l.
-std::pair<sylva::eval::Similarity3, double> alignMap(const std::vector<std::pair<Id, Vec<3>>>& estimated,
-                                                     const sylva::sim::ForestScenario& scenario) {
-  std::vector<Vec<3>> est, truth;
-  for (const auto& [id, p] : estimated) {
-    est.push_back(p);
-    truth.push_back(scenario.tree(id).base);
-  }
-  const sylva::eval::Similarity3 T = sylva::eval::alignSimilarity(est, truth);
-  return {T, sylva::eval::meanSquaredError(T, est, truth)};
-}
+constexpr PipelineRun kPipelines[] = {
+    {WidthPipeline::kAfterXyz, "with_width", "with width"},
+    {WidthPipeline::kNone, "without_width", "without width"},
+    {WidthPipeline::kFromFirstSight, "width_first_sight", "width 1st sight"},
+};
 
 RunResult runSlam(const sylva::sim::ForestScenario& scenario,
                   TreeSlamOptions options,
-                  bool use_width,
+                  const PipelineRun& which,
                   int max_frames,
                   const std::string& svg_path) {
-  options.use_width = use_width;
-  RunResult result;
-  result.name = use_width ? "with_width" : "without_width";
-  const auto& frames = scenario.frames;
-  const int n_frames = std::min<int>(static_cast<int>(frames.size()), max_frames > 0 ? max_frames : static_cast<int>(frames.size()));
-  MonocularTreeSlam slam(options, frames.front().state, forest_slam::initialCameraCovariance());
-
-  std::vector<Vec<3>> estimated_path;
-  std::vector<std::pair<Id, Vec<3>>> end_of_lap1;
-  const int last_lap = frames[n_frames - 1].lap;
-  const auto start = std::chrono::steady_clock::now();
-  for (int k = 0; k < n_frames; ++k) {
-    const double dt = k == 0 ? 0.0 : frames[k].t_s - frames[k - 1].t_s;
-    const forest_slam::FrameReport report = slam.processFrame(dt, scenario.observations[k]);
-    result.rejected += report.rejected;
-    result.hypotheses += report.hypotheses;
-    estimated_path.push_back(slam.filter().robotMean().head<3>());
-    const bool lap1_ends = frames[k].lap == 0 && (k + 1 == n_frames || frames[k + 1].lap > 0);
-    if (lap1_ends) end_of_lap1 = landmarkPositions(slam.filter());
-  }
-  result.runtime_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  const auto& ekf = slam.filter();
-  result.by_type = slam.countByType();
-
-  sylva::eval::Similarity3 final_alignment;
-  bool aligned = false;
-  try {
-    result.landmark_error = alignMap(end_of_lap1, scenario).second;
-    final_alignment = alignMap(landmarkPositions(ekf), scenario).first;
-    aligned = true;
-    std::vector<Vec<3>> est, truth;
-    for (int k = 0; k < n_frames; ++k) {
-      if (frames[k].lap != last_lap) continue;
-      est.push_back(estimated_path[k]);
-      truth.push_back(frames[k].state.head<3>());
-    }
-    result.trajectory_error = sylva::eval::meanSquaredError(final_alignment, est, truth);
-  } catch (const sylva::Error& e) {
-    result.failure = e.what();
-  }
-  result.converged = sylva::eval::ConvergenceCriteria{}.converged(result.landmark_error, result.trajectory_error);
-
-  double sum_sq = 0.0, sum_true = 0.0;
-  for (const auto& s : ekf.slots()) {
-    if (!ekf.holds<sylva::TreeXYZR>(s.id)) continue;
-    const double r_est = ekf.landmarkMean<sylva::TreeXYZR>(s.id)[3] * (aligned ? final_alignment.scale : 1.0);
-    const double r_true = scenario.tree(s.id).radius_m;
-    sum_sq += (r_est - r_true) * (r_est - r_true);
-    sum_true += r_true;
-    ++result.xyzr_trees;
-  }
-  if (result.xyzr_trees > 0) {
-    result.radius_rmse_m = std::sqrt(sum_sq / result.xyzr_trees);
-    result.mean_true_radius_m = sum_true / result.xyzr_trees;
-  }
-
+  options.pipeline = which.pipeline;
+  forest_slam::RunTrace trace;
+  const RunResult result = forest_slam::runForestSlam(scenario, options, max_frames, 0, &trace);
   if (!svg_path.empty()) {
+    const auto& frames = scenario.frames;
+    const int n_frames = static_cast<int>(trace.estimated_path.size());
+    const sylva::eval::Similarity3& T = trace.final_alignment;
     forest_slam::ForestSvgData svg;
-    svg.title = std::string("forest_slam, ") + (use_width ? "with" : "without") + " the tree-width sensor";
+    const char* how = which.pipeline == WidthPipeline::kNone       ? "without the tree-width sensor"
+                      : which.pipeline == WidthPipeline::kAfterXyz ? "with the tree-width sensor"
+                                                                   : "with the tree-width sensor from the first sight (IDR)";
+    svg.title = std::string("forest_slam, ") + how;
     char line[256];
     std::snprintf(line, sizeof line, "landmark error e_l %.3f m^2, trajectory error e_t %.3f m^2, %s; %d trees XYZ-R, %d XYZ, %d inverse depth",
                   result.landmark_error, result.trajectory_error, result.converged ? "converged" : "NOT converged",
-                  result.by_type[2], result.by_type[1], result.by_type[0]);
+                  result.by_type[2], result.by_type[1], result.by_type[0] + result.by_type[3]);
     svg.subtitle_lines.push_back(line);
     svg.subtitle_lines.push_back("estimates aligned to the truth by the similarity fitted to the final map (eq. 4.1-4.11)");
     for (const auto& t : scenario.trees) svg.true_trees.push_back({t.base.head<2>(), t.radius_m});
     for (int k = 0; k < n_frames; ++k) {
       svg.true_path.push_back(frames[k].state.head<2>());
-      if (aligned) svg.estimated_path.push_back(final_alignment(estimated_path[k]).head<2>());
+      if (trace.aligned) svg.estimated_path.push_back(T(trace.estimated_path[k]).head<2>());
     }
-    if (aligned) {
-      for (const auto& [id, p] : landmarkPositions(ekf)) {
-        const Vec<3> q = final_alignment(p);
-        if (ekf.holds<sylva::TreeXYZR>(id))
-          svg.estimated_trees.push_back({q.head<2>(), ekf.landmarkMean<sylva::TreeXYZR>(id)[3] * final_alignment.scale});
+    if (trace.aligned) {
+      for (const auto& [p, radius] : trace.final_landmarks) {
+        const Vec<3> q = T(p);
+        if (std::isfinite(radius))
+          svg.estimated_trees.push_back({q.head<2>(), radius * T.scale});
         else
           svg.estimated_points.push_back(q.head<2>());
       }
@@ -200,7 +131,8 @@ nlohmann::json toJson(const RunResult& r) {
   j["radius_rmse_m"] = number(r.radius_rmse_m);
   j["mean_true_radius_m"] = number(r.mean_true_radius_m);
   j["runtime_s"] = r.runtime_s;
-  j["trees_by_parametrization"] = {{"inverse_depth", r.by_type[0]}, {"xyz", r.by_type[1]}, {"xyzr", r.by_type[2]}};
+  j["trees_by_parametrization"] = {
+      {"inverse_depth", r.by_type[0]}, {"xyz", r.by_type[1]}, {"xyzr", r.by_type[2]}, {"idr", r.by_type[3]}};
   j["rejected_observations"] = r.rejected;
   j["reanchored_frames"] = r.hypotheses;
   if (!r.failure.empty()) j["failure"] = r.failure;
@@ -264,7 +196,7 @@ int main(int argc, char** argv) {
   app.add_option("--grid", scenario_options.forest.grid_spacing_m, "spacing of the forest's grid (m)")->capture_default_str();
   app.add_option("--frames", max_frames, "stop after this many frames (0: all)")->capture_default_str();
   app.add_flag("--json", json, "print the results as JSON");
-  app.add_option("--svg-prefix", svg_prefix, "write PREFIX_with_width.svg and PREFIX_without_width.svg (empty: none)")
+  app.add_option("--svg-prefix", svg_prefix, "write PREFIX_with_width.svg, PREFIX_without_width.svg and PREFIX_width_first_sight.svg (empty: none)")
       ->capture_default_str();
   app.add_option("--forest-svg", forest_svg, "also write the generated forest and path (top view) to this SVG");
   CLI11_PARSE(app, argc, argv);
@@ -286,8 +218,8 @@ int main(int argc, char** argv) {
       forest_slam::writeForestSvg(forest_svg, svg);
     }
     const auto svg_for = [&](const char* which) { return svg_prefix.empty() ? std::string() : svg_prefix + "_" + which + ".svg"; };
-    const RunResult with = runSlam(scenario, slam_options, true, max_frames, svg_for("with_width"));
-    const RunResult without = runSlam(scenario, slam_options, false, max_frames, svg_for("without_width"));
+    std::vector<RunResult> results;
+    for (const PipelineRun& p : kPipelines) results.push_back(runSlam(scenario, slam_options, p, max_frames, svg_for(p.key)));
 
     std::size_t observations = 0;
     for (const auto& o : scenario.observations) observations += o.size();
@@ -297,33 +229,44 @@ int main(int argc, char** argv) {
       out["trees"] = scenario.trees.size();
       out["frames"] = max_frames > 0 ? std::min<std::size_t>(max_frames, scenario.frames.size()) : scenario.frames.size();
       out["mean_trees_per_frame"] = static_cast<double>(observations) / scenario.frames.size();
-      out["with_width"] = toJson(with);
-      out["without_width"] = toJson(without);
+      for (std::size_t i = 0; i < results.size(); ++i) out[kPipelines[i].key] = toJson(results[i]);
       std::cout << out.dump(2) << "\n";
     } else {
       std::printf("forest_slam: %zu trees, %zu frames, %.1f trees measured per frame (seed %llu, occlusion %s)\n\n",
                   scenario.trees.size(), scenario.frames.size(), static_cast<double>(observations) / scenario.frames.size(),
                   static_cast<unsigned long long>(seed), no_occlusion ? "off" : "on");
-      std::printf("%-34s %14s %14s\n", "", "with width", "without width");
-      auto row = [](const char* label, double a, double b, const char* fmt) {
-        char sa[32], sb[32];
-        std::snprintf(sa, sizeof sa, fmt, a);
-        std::snprintf(sb, sizeof sb, fmt, b);
-        std::printf("%-34s %14s %14s\n", label, std::isfinite(a) ? sa : "-", std::isfinite(b) ? sb : "-");
+      std::printf("%-36s", "");
+      for (const PipelineRun& p : kPipelines) std::printf(" %16s", p.title);
+      std::printf("\n");
+      const auto row = [&](const char* label, auto value, const char* fmt) {
+        std::printf("%-36s", label);
+        for (const RunResult& r : results) {
+          const double v = value(r);
+          char cell[32];
+          std::snprintf(cell, sizeof cell, fmt, v);
+          std::printf(" %16s", std::isfinite(v) ? cell : "-");
+        }
+        std::printf("\n");
       };
-      row("landmark error e_l (m^2, lap 1)", with.landmark_error, without.landmark_error, "%.4f");
-      row("trajectory error e_t (m^2, last lap)", with.trajectory_error, without.trajectory_error, "%.4f");
-      std::printf("%-34s %14s %14s\n", "converged (e_l < 10, e_t < 3)", with.converged ? "yes" : "no", without.converged ? "yes" : "no");
-      row("radius RMS error (m, XYZ-R trees)", with.radius_rmse_m, without.radius_rmse_m, "%.4f");
-      row("mean true radius (m, same trees)", with.mean_true_radius_m, without.mean_true_radius_m, "%.4f");
-      row("trees XYZ-R at the end", with.by_type[2], without.by_type[2], "%.0f");
-      row("trees XYZ at the end", with.by_type[1], without.by_type[1], "%.0f");
-      row("trees inverse depth at the end", with.by_type[0], without.by_type[0], "%.0f");
-      row("observations refused", with.rejected, without.rejected, "%.0f");
-      row("run time (s)", with.runtime_s, without.runtime_s, "%.2f");
-      if (!svg_prefix.empty()) std::printf("\nmaps: %s, %s\n", svg_for("with_width").c_str(), svg_for("without_width").c_str());
-      for (const RunResult* r : {&with, &without})
-        if (!r->failure.empty()) std::printf("%s: no alignment: %s\n", r->name.c_str(), r->failure.c_str());
+      row("landmark error e_l (m^2, lap 1)", [](const RunResult& r) { return r.landmark_error; }, "%.4f");
+      row("trajectory error e_t (m^2, last lap)", [](const RunResult& r) { return r.trajectory_error; }, "%.4f");
+      std::printf("%-36s", "converged (e_l < 10, e_t < 3)");
+      for (const RunResult& r : results) std::printf(" %16s", r.converged ? "yes" : "no");
+      std::printf("\n");
+      row("radius RMS error (m, XYZ-R trees)", [](const RunResult& r) { return r.radius_rmse_m; }, "%.4f");
+      row("mean true radius (m, same trees)", [](const RunResult& r) { return r.mean_true_radius_m; }, "%.4f");
+      row("trees XYZ-R at the end", [](const RunResult& r) { return double(r.by_type[2]); }, "%.0f");
+      row("trees XYZ at the end", [](const RunResult& r) { return double(r.by_type[1]); }, "%.0f");
+      row("trees inverse depth (or IDR) at end", [](const RunResult& r) { return double(r.by_type[0] + r.by_type[3]); }, "%.0f");
+      row("observations refused", [](const RunResult& r) { return double(r.rejected); }, "%.0f");
+      row("run time (s)", [](const RunResult& r) { return r.runtime_s; }, "%.2f");
+      if (!svg_prefix.empty()) {
+        std::printf("\nmaps:");
+        for (const PipelineRun& p : kPipelines) std::printf(" %s", svg_for(p.key).c_str());
+        std::printf("\n");
+      }
+      for (std::size_t i = 0; i < results.size(); ++i)
+        if (!results[i].failure.empty()) std::printf("%s: no alignment: %s\n", kPipelines[i].key, results[i].failure.c_str());
     }
   } catch (const sylva::Error& e) {
     std::cerr << "forest_slam: " << e.what() << "\n";

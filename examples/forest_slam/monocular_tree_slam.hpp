@@ -3,12 +3,20 @@
 // tree-width thesis (Sec. 3.5 and 4.1.3): the camera of `ConstantVelocity3D`, trees first
 // as inverse-depth points, then XYZ, then (with the tree-width sensor) XYZ-R.
 //
+// Three pipelines (`WidthPipeline`) share everything but the use of the width w:
+//   kNone            no width: InverseDepth -> XYZ, (u, v) only;
+//   kAfterXyz        the thesis: InverseDepth -> XYZ -> XYZ-R, w used once a tree is XYZ-R;
+//   kFromFirstSight  beyond the thesis (its Ch. 5): trees start as InverseDepthRadius (IDR),
+//                    fused with [u, v, w] from the first frame (InverseDepthTreeWidth), and
+//                    become XYZ-R by the same linearity rule as inverse depth -> XYZ.
+//
 // Per frame:
 //   1. predict the camera over dt (acceleration noise);
 //   2. fuse the observations of mapped trees, one batched update per model:
 //        InverseDepth  PinholePoint<InverseDepth>   z = [u, v]
 //        Point3        PinholePoint<Point3>         z = [u, v]
 //        TreeXYZR      TreeWidth                    z = [u, v, w]   (with the width sensor)
+//        InverseDepthRadius  InverseDepthTreeWidth    z = [u, v, w]   (kFromFirstSight)
 //      Each observation is gated on its NIS at the predicted state (chi-square gate of
 //      probability `gate_probability`, 0.99999 by default; 0 turns it off). If fewer than half
 //      pass, the prediction is the suspect (a turn the constant-velocity model did not expect):
@@ -20,7 +28,8 @@
 //      with the width sensor, XYZ trees observed in this frame -> XYZ-R once their position
 //      is certain enough, with the radius from this frame's width (`InverseTreeWidth`);
 //   4. trees seen for the first time are added as inverse-depth points
-//      (`InverseDepthInitialization`, Civera et al. 2008).
+//      (`InverseDepthInitialization`, Civera et al. 2008), or as IDR trees
+//      (`InverseDepthRadiusInitialization`) with kFromFirstSight.
 //
 // The (u, v) used for points is the centre of the trunk base's image ellipse, as in the
 // thesis (eq. 3.7); it differs slightly from the projection of the base centre, a small
@@ -32,6 +41,7 @@
 #include <array>
 #include <limits>
 #include <cstddef>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -41,9 +51,11 @@
 #include <sylva/filter/ekf.hpp>
 #include <sylva/filter/tree_life_cycle.hpp>
 #include <sylva/landmarks/inverse_depth.hpp>
+#include <sylva/landmarks/inverse_depth_radius.hpp>
 #include <sylva/landmarks/point3.hpp>
 #include <sylva/landmarks/tree_xyzr.hpp>
 #include <sylva/measurements/inverse_depth_initialization.hpp>
+#include <sylva/measurements/inverse_depth_tree_width.hpp>
 #include <sylva/measurements/pinhole_camera.hpp>
 #include <sylva/measurements/pinhole_point.hpp>
 #include <sylva/measurements/tree_width.hpp>
@@ -72,18 +84,31 @@ inline Mat<13, 13> initialCameraCovariance() {
   return P0;
 }
 
+/// How the tree-width measurement w is used (see the top of this file).
+enum class WidthPipeline { kNone, kAfterXyz, kFromFirstSight };
+
+/// "none", "after_xyz", "first_sight".
+inline const char* pipelineName(WidthPipeline p) {
+  switch (p) {
+    case WidthPipeline::kNone: return "none";
+    case WidthPipeline::kAfterXyz: return "after_xyz";
+    case WidthPipeline::kFromFirstSight: return "first_sight";
+  }
+  return "?";
+}
+
 /// The filter's settings. The noise defaults are the "gains" (thesis Sec. 4.2) selected for
 /// the default forest with 1 px simulated noise: see docs/forest-slam-results.md for how.
 struct TreeSlamOptions {
   sylva::PinholeCamera camera{500.0, 500.0, 320.0, 240.0, 640, 480};
-  bool use_width = true;            ///< the tree-width sensor (XYZ-R trees, TreeWidth updates)
+  WidthPipeline pipeline = WidthPipeline::kAfterXyz;  ///< how the width w is used
   double pixel_sigma_px = 1.5;      ///< filter's measurement noise on u, v
   double width_sigma_px = 1.0;      ///< filter's measurement noise on w
   double linear_accel_sigma = 0.3;  ///< m/s^2, ConstantVelocity3D's noise
   double angular_accel_sigma = 0.3; ///< rad/s^2
   double initial_inverse_depth = 0.1;  ///< 1/m, Civera et al. 2008
   double inverse_depth_sigma = 0.5;    ///< 1/m
-  double linearity_threshold = 0.1;    ///< inverse depth -> XYZ (Civera et al. 2007)
+  double linearity_threshold = 0.1;    ///< inverse depth -> XYZ, IDR -> XYZ-R (Civera et al. 2007)
   double tree_position_sigma_m = 0.3;  ///< XYZ -> XYZ-R once the position's largest sigma is below
   double gate_probability = 0.99999;   ///< chi-square gate on each observation's NIS (0: off)
 };
@@ -93,14 +118,15 @@ struct FrameReport {
   int fused = 0;      ///< observations fused
   int added = 0;      ///< new inverse-depth landmarks
   int to_xyz = 0;     ///< inverse depth -> XYZ conversions
-  int to_tree = 0;    ///< XYZ -> XYZ-R conversions
+  int to_tree = 0;    ///< XYZ -> XYZ-R or IDR -> XYZ-R conversions
   int rejected = 0;   ///< observations or conversions refused by the filter, a model or the gate
   int hypotheses = 0; ///< 1 when the frame was re-anchored on a one-point hypothesis
 };
 
 class MonocularTreeSlam {
  public:
-  using Filter = sylva::Ekf<sylva::ConstantVelocity3D, sylva::InverseDepth, sylva::Point3, sylva::TreeXYZR>;
+  using Filter = sylva::Ekf<sylva::ConstantVelocity3D, sylva::InverseDepth, sylva::Point3, sylva::TreeXYZR,
+                            sylva::InverseDepthRadius>;
   using IdPoint = sylva::PinholePoint<sylva::InverseDepth>;
   using XyzPoint = sylva::PinholePoint<sylva::Point3>;
 
@@ -110,7 +136,9 @@ class MonocularTreeSlam {
         id_point_(options.camera),
         xyz_point_(options.camera),
         tree_width_(options.camera),
+        idr_width_(options.camera),
         init_(options.camera, options.initial_inverse_depth, options.inverse_depth_sigma),
+        idr_init_(options.camera, options.initial_inverse_depth, options.inverse_depth_sigma),
         life_(options.camera,
               sylva::LinearityIndexBelow{options.linearity_threshold},
               sylva::PositionSigmaBelow{options.tree_position_sigma_m}),
@@ -142,7 +170,8 @@ class MonocularTreeSlam {
     fuseMapped(report);
 
     report.to_xyz = static_cast<int>(life_.convertInverseDepth(ekf_).size());
-    if (options_.use_width) {
+    if (options_.pipeline == WidthPipeline::kFromFirstSight) report.to_tree += convertInverseDepthRadius(report);
+    if (options_.pipeline == WidthPipeline::kAfterXyz) {
       for (const Seen& s : mapped_) {
         if (!ekf_.template holds<sylva::Point3>(s.id)) continue;
         try {
@@ -155,7 +184,10 @@ class MonocularTreeSlam {
 
     for (const Seen& s : fresh_) {
       try {
-        ekf_.add(s.id, init_, init_.measurement(s.z.head<2>()), init_.noise(pixel_noise_));
+        if (options_.pipeline == WidthPipeline::kFromFirstSight)
+          ekf_.add(s.id, idr_init_, idr_init_.measurement(s.z), idr_init_.noise(tree_noise_));
+        else
+          ekf_.add(s.id, init_, init_.measurement(s.z.head<2>()), init_.noise(pixel_noise_));
         ++report.added;
       } catch (const sylva::Error&) {
         ++report.rejected;
@@ -164,9 +196,9 @@ class MonocularTreeSlam {
     return report;
   }
 
-  /// Number of landmarks per parametrization: [inverse depth, XYZ, XYZ-R].
-  std::array<int, 3> countByType() const {
-    std::array<int, 3> n{0, 0, 0};
+  /// Number of landmarks per parametrization: [inverse depth, XYZ, XYZ-R, IDR].
+  std::array<int, 4> countByType() const {
+    std::array<int, 4> n{0, 0, 0, 0};
     for (const auto& s : ekf_.slots()) ++n[static_cast<std::size_t>(s.type_index)];
     return n;
   }
@@ -181,6 +213,31 @@ class MonocularTreeSlam {
     double nis;
   };
 
+  /// IDR -> XYZ-R for every IDR tree whose linearity index (of its inverse-depth part) is
+  /// below the threshold, as inverse depth -> XYZ. Returns the number converted.
+  int convertInverseDepthRadius(FrameReport& report) {
+    ready_.clear();
+    const Vec<3> position = ekf_.robotMean().head<3>();
+    for (const auto& slot : ekf_.slots()) {
+      if (!ekf_.template holds<sylva::InverseDepthRadius>(slot.id)) continue;
+      const Vec<7> l = ekf_.template landmarkMean<sylva::InverseDepthRadius>(slot.id);
+      if (!(l[5] > 0.0)) continue;
+      const double sigma_rho = std::sqrt(std::max(0.0, ekf_.template landmarkCovariance<sylva::InverseDepthRadius>(slot.id)(5, 5)));
+      if (sylva::inverseDepthRadiusLinearityIndex(position, l, sigma_rho) < options_.linearity_threshold)
+        ready_.push_back(slot.id);
+    }
+    int converted = 0;
+    for (Id id : ready_) {
+      try {
+        ekf_.reparametrize(id, sylva::InverseDepthRadiusToTree<sylva::ConstantVelocity3D>{});
+        ++converted;
+      } catch (const sylva::Error&) {
+        ++report.rejected;
+      }
+    }
+    return converted;
+  }
+
   static constexpr double kUnpredictable = std::numeric_limits<double>::infinity();
   static constexpr int kMaxHypotheses = 5;
 
@@ -193,6 +250,8 @@ class MonocularTreeSlam {
         return ekf.innovation(id_point_, s.id, Vec<2>(s.z.head<2>()), pixel_noise_).nis();
       if (ekf.template holds<sylva::Point3>(s.id))
         return ekf.innovation(xyz_point_, s.id, Vec<2>(s.z.head<2>()), pixel_noise_).nis();
+      if (ekf.template holds<sylva::InverseDepthRadius>(s.id))
+        return ekf.innovation(idr_width_, s.id, s.z, tree_noise_).nis();
       return ekf.innovation(tree_width_, s.id, s.z, tree_noise_).nis();
     } catch (const sylva::Error&) {
       return kUnpredictable;
@@ -205,7 +264,8 @@ class MonocularTreeSlam {
 
   bool withinGate(const Filter& ekf, Id id, double nis) const {
     if (!(nis < kUnpredictable)) return false;
-    return nis < gate_[ekf.template holds<sylva::TreeXYZR>(id) ? 3 : 2];
+    const bool with_width = ekf.template holds<sylva::TreeXYZR>(id) || ekf.template holds<sylva::InverseDepthRadius>(id);
+    return nis < gate_[with_width ? 3 : 2];
   }
 
   /// Fuses observation `s` alone into `ekf` (throws like Ekf::update).
@@ -214,6 +274,8 @@ class MonocularTreeSlam {
       ekf.update(id_point_, s.id, Vec<2>(s.z.head<2>()), pixel_noise_);
     else if (ekf.template holds<sylva::Point3>(s.id))
       ekf.update(xyz_point_, s.id, Vec<2>(s.z.head<2>()), pixel_noise_);
+    else if (ekf.template holds<sylva::InverseDepthRadius>(s.id))
+      ekf.update(idr_width_, s.id, s.z, tree_noise_);
     else
       ekf.update(tree_width_, s.id, s.z, tree_noise_);
   }
@@ -289,17 +351,21 @@ class MonocularTreeSlam {
     id_batch_.clear();
     xyz_batch_.clear();
     tree_batch_.clear();
+    idr_batch_.clear();
     for (const Seen& s : observations) {
       if (ekf_.template holds<sylva::InverseDepth>(s.id))
         id_batch_.push_back({s.id, s.z.head<2>(), pixel_noise_});
       else if (ekf_.template holds<sylva::Point3>(s.id))
         xyz_batch_.push_back({s.id, s.z.head<2>(), pixel_noise_});
+      else if (ekf_.template holds<sylva::InverseDepthRadius>(s.id))
+        idr_batch_.push_back({s.id, s.z, tree_noise_});
       else
         tree_batch_.push_back({s.id, s.z, tree_noise_});
     }
     fuse(id_point_, id_batch_, report);
     fuse(xyz_point_, xyz_batch_, report);
     fuse(tree_width_, tree_batch_, report);
+    fuse(idr_width_, idr_batch_, report);
   }
 
   template <typename Model>
@@ -327,7 +393,9 @@ class MonocularTreeSlam {
   IdPoint id_point_;
   XyzPoint xyz_point_;
   sylva::TreeWidth tree_width_;
+  sylva::InverseDepthTreeWidth idr_width_;
   sylva::InverseDepthInitialization init_;
+  sylva::InverseDepthRadiusInitialization idr_init_;
   sylva::TreeLifeCycle<> life_;
   sylva::Gaussian<6> accel_noise_;
   sylva::Gaussian<2> pixel_noise_;
@@ -335,6 +403,8 @@ class MonocularTreeSlam {
   std::vector<sylva::Observation<IdPoint>> id_batch_;
   std::vector<sylva::Observation<XyzPoint>> xyz_batch_;
   std::vector<sylva::Observation<sylva::TreeWidth>> tree_batch_;
+  std::vector<sylva::Observation<sylva::InverseDepthTreeWidth>> idr_batch_;
+  std::vector<Id> ready_;
   std::array<double, 4> gate_;  ///< chi-square gate by measurement dimension (2 and 3 used)
   std::vector<Seen> fresh_, mapped_, accepted_, refused_, second_chance_;
   std::vector<Candidate> candidates_;

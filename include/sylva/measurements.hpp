@@ -1,6 +1,7 @@
 #pragma once
 // IWYU pragma: begin_exports
 #include "sylva/measurements/inverse_depth_initialization.hpp"
+#include "sylva/measurements/inverse_depth_tree_width.hpp"
 #include "sylva/measurements/inverse_tree_width.hpp"
 #include "sylva/measurements/pinhole_camera.hpp"
 #include "sylva/measurements/pinhole_point.hpp"

@@ -94,3 +94,63 @@ TEST_CASE("NMEE bounds are those of an N(0, 1/N) average", "[consistency]") {
   CHECK_THROWS_WITH(NmeeSeries<2>::bounds(0), Contains("runs > 0"));
   CHECK_THROWS_WITH(series.add(-1, Vec<2>::Zero()), Contains("negative step"));
 }
+
+TEST_CASE("camera pose NEES is chi-square(6) for errors drawn from the covariance", "[consistency]") {
+  // True camera: somewhere, turned about a tilted axis.
+  Vec<13> truth = Vec<13>::Zero();
+  truth.head<3>() << 1.0, -2.0, 1.5;
+  truth.segment<4>(3) = quaternionFromRotationVector<double>(Vec<3>(0.3, -0.5, 1.2));
+  // Tangent-space covariance of [position error, rotation error]: correlated, SPD.
+  Mat<6, 6> A;
+  A << 0.05, 0.01, 0.0, 0.002, 0.0, 0.0,  //
+      0.0, 0.04, 0.01, 0.0, 0.001, 0.0,   //
+      0.0, 0.0, 0.03, 0.0, 0.0, 0.003,    //
+      0.0, 0.0, 0.0, 0.010, 0.002, 0.0,   //
+      0.0, 0.0, 0.0, 0.0, 0.008, 0.001,   //
+      0.0, 0.0, 0.0, 0.0, 0.0, 0.012;
+  const Mat<6, 6> Sigma = A * A.transpose();
+  std::mt19937_64 rng(11);
+  std::normal_distribution<double> normal;
+  const int runs = 4000;
+  double sum = 0.0;
+  for (int i = 0; i < runs; ++i) {
+    Vec<6> w;
+    for (int k = 0; k < 6; ++k) w[k] = normal(rng);
+    const Vec<6> delta = A * w;  // ~ N(0, Sigma)
+    // The estimate: t_hat = t - delta_p, q_hat = q (x) exp(-delta_theta), so that
+    // e = [t - t_hat, 2 vec(q_hat^* (x) q)] = delta to first order.
+    Vec<13> estimate = truth;
+    estimate.head<3>() -= delta.head<3>();
+    estimate.segment<4>(3) = quaternionProduct<double>(truth.segment<4>(3), quaternionFromRotationVector<double>(Vec<3>(-delta.tail<3>())));
+    // The filter's covariance of [t, q] about its estimate: dq = 0.5 q_hat (x) (0, dtheta).
+    Mat<7, 6> H = Mat<7, 6>::Zero();
+    H.topLeftCorner<3, 3>() = -Mat<3, 3>::Identity();
+    for (int k = 0; k < 3; ++k) {
+      Vec<4> v = Vec<4>::Zero();
+      v[k + 1] = 1.0;
+      H.block<4, 1>(3, 3 + k) = -0.5 * quaternionProduct<double>(Vec<4>(estimate.segment<4>(3)), v);
+    }
+    Mat<13, 13> P = Mat<13, 13>::Identity();
+    P.topLeftCorner<7, 7>() = H * Sigma * H.transpose();
+    sum += cameraPoseNees(estimate, P, truth);
+  }
+  // Mean of 4000 chi-square(6): 6 with standard deviation sqrt(12 / 4000) = 0.055.
+  CHECK(sum / runs == Approx(6.0).margin(0.25));
+
+  // The exact estimate has NEES 0; -q is the same orientation.
+  Mat<13, 13> P = Mat<13, 13>::Identity() * 0.01;
+  CHECK(cameraPoseNees(truth, P, truth) == Approx(0.0).margin(1e-20));
+  Vec<13> off = truth;
+  off[0] += 0.1;
+  Vec<13> flipped = truth;
+  flipped.segment<4>(3) *= -1.0;
+  CHECK(cameraPoseNees(off, P, flipped) == Approx(cameraPoseNees(off, P, truth)));
+  // Bad input.
+  Vec<13> nan_state = truth;
+  nan_state[1] = NAN;
+  CHECK_THROWS_WITH(cameraPoseNees(nan_state, P, truth), Contains("not finite"));
+  CHECK_THROWS_WITH(cameraPoseNees(off, Mat<13, 13>::Zero(), truth), Contains("not positive definite"));
+  Vec<13> zero_q = truth;
+  zero_q.segment<4>(3).setZero();
+  CHECK_THROWS_WITH(cameraPoseNees(zero_q, P, truth), Contains("zero norm"));
+}

@@ -80,7 +80,7 @@ TEST_CASE("inverse then forward model is the identity", "[measurements][laws]") 
   }
 }
 
-TEST_CASE("the bearing and the residual are wrapped to (-pi, pi]", "[measurements]") {
+TEST_CASE("the bearing and the residual are wrapped to the half-open interval from -pi to pi", "[measurements]") {
   const Vec<2> z = RangeBearing{}(Vec<3>(0.0, 0.0, 0.0), Vec<2>(-5.0, -1e-9));
   CHECK(z[1] > -kPi);
   CHECK(z[1] <= kPi);

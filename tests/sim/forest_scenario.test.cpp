@@ -166,3 +166,50 @@ TEST_CASE("the default scenario is reproducible and sees trees in every frame", 
   CHECK(a.trees.size() >= 30);
   CHECK(fewest >= 3);
 }
+
+TEST_CASE("the scenario's parts: thinned forests and other noise on the same forest", "[sim][scenario]") {
+  const ForestScenarioOptions options;
+  const std::vector<Tree> trees = makeForestTrees(options, 7);
+  // makeForestScenario is the composition of its parts.
+  const ForestScenario whole = makeForestScenario(options, 7);
+  const ForestScenario parts = observeForest(options, trees, deriveSeed(7, 2));
+  REQUIRE(whole.trees.size() == trees.size());
+  REQUIRE(whole.observations.size() == parts.observations.size());
+  for (std::size_t k = 0; k < whole.observations.size(); ++k) {
+    REQUIRE(whole.observations[k].size() == parts.observations[k].size());
+    for (std::size_t i = 0; i < whole.observations[k].size(); ++i) CHECK(whole.observations[k][i].z == parts.observations[k][i].z);
+  }
+  // Another noise seed: the same trees are seen, with other noise.
+  const ForestScenario other = observeForest(options, trees, deriveSeed(7, 3));
+  REQUIRE(other.observations[10].size() == parts.observations[10].size());
+  CHECK(other.observations[10][0].z_true == parts.observations[10][0].z_true);
+  CHECK(other.observations[10][0].z != parts.observations[10][0].z);
+
+  // Thinning keeps round(fraction N) trees, renumbered, in order, all from the original.
+  Rng rng(3);
+  const std::vector<Tree> thin = thinForest(trees, 0.6, rng);
+  CHECK(thin.size() == static_cast<std::size_t>(std::llround(0.6 * static_cast<double>(trees.size()))));
+  std::size_t from = 0;
+  for (std::size_t i = 0; i < thin.size(); ++i) {
+    CHECK(thin[i].id == static_cast<Id>(i));
+    while (from < trees.size() && trees[from].base != thin[i].base) ++from;
+    CHECK(from < trees.size());  // found, and after the previous one: order kept
+  }
+  Rng rng_again(3);
+  const std::vector<Tree> thin_again = thinForest(trees, 0.6, rng_again);
+  for (std::size_t i = 0; i < thin.size(); ++i) CHECK(thin_again[i].base == thin[i].base);
+  Rng rng_other(4);
+  const std::vector<Tree> thin_other = thinForest(trees, 0.6, rng_other);
+  bool differs = false;
+  for (std::size_t i = 0; i < thin.size(); ++i) differs = differs || thin_other[i].base != thin[i].base;
+  CHECK(differs);
+  CHECK(thinForest(trees, 1.0, rng).size() == trees.size());
+  CHECK(thinForest(trees, 0.0, rng).empty());
+  CHECK(observeForest(options, thin, 1).trees.size() == thin.size());
+
+  CHECK(throwsCode([&] { thinForest(trees, 1.5, rng); }, ErrorCode::kInvalidArgument));
+  CHECK(throwsCode([&] { thinForest(trees, std::nan(""), rng); }, ErrorCode::kInvalidArgument));
+  std::vector<Tree> bad_ids = trees;
+  bad_ids[1].id = 5;
+  CHECK(throwsCode([&] { observeForest(options, bad_ids, 1); }, ErrorCode::kInvalidArgument));
+}

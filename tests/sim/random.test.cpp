@@ -79,7 +79,7 @@ TEST_CASE("Rng: normal() has the moments of N(0, 1)", "[sim][random]") {
   CHECK(std::abs(static_cast<double>(within_one) / n - p) < 5.0 * std::sqrt(p * (1 - p)) / root_n);
 }
 
-TEST_CASE("Rng: uniform(lo, hi) stays in [lo, hi) with the right mean", "[sim][random]") {
+TEST_CASE("Rng: uniform(lo, hi) stays at or above lo and below hi, with the right mean", "[sim][random]") {
   Rng rng(7);
   const int n = 100000;
   double sum = 0.0;
