@@ -266,7 +266,7 @@ int main(int argc, char** argv) {
         std::printf("\n");
       }
       for (std::size_t i = 0; i < results.size(); ++i)
-        if (!results[i].failure.empty()) std::printf("%s: no alignment: %s\n", kPipelines[i].key, results[i].failure.c_str());
+        if (!results[i].failure.empty()) std::cout << kPipelines[i].key << ": no alignment: " << results[i].failure << "\n";
     }
   } catch (const sylva::Error& e) {
     std::cerr << "forest_slam: " << e.what() << "\n";
