@@ -119,17 +119,20 @@ void writeReport(const std::vector<nlohmann::json>& lines,
                  const std::string& plan) {
   const fs::path images = docs / "images";
   const fs::path study = docs / "study";
+  // gnuplot's scripts (with the data inline) go to a scratch directory, not into docs/.
+  const fs::path work = fs::temp_directory_path() / "tree_width_study_plots";
   fs::create_directories(images);
   fs::create_directories(study);
+  fs::create_directories(work);
   const StudyData data = aggregate(lines);
   const double dt_s = sylva::sim::TrajectoryOptions{}.dt_s;
   writeCsv(data, study / "summary.csv");
   for (const std::string& occlusion : occlusionKeys()) {
-    plotSweep(data, "noise", occlusion, images / ("study_noise_" + occlusion + ".svg"), study);
-    plotSweep(data, "density", occlusion, images / ("study_density_" + occlusion + ".svg"), study);
-    plotGains(data, occlusion, images / ("study_gain_" + occlusion + ".svg"), study);
+    plotSweep(data, "noise", occlusion, images / ("study_noise_" + occlusion + ".svg"), work);
+    plotSweep(data, "density", occlusion, images / ("study_density_" + occlusion + ".svg"), work);
+    plotGains(data, occlusion, images / ("study_gain_" + occlusion + ".svg"), work);
   }
-  plotNees(data, images / "study_nees.svg", study, dt_s);
+  plotNees(data, images / "study_nees.svg", work, dt_s);
   writeResultsMarkdown(data, docs / "results.md", "images", command, plan, dt_s);
   std::cerr << "tree_width_study: wrote " << (docs / "results.md").string() << ", "
             << (study / "summary.csv").string() << " and " << (images / "study_*.svg").string()
@@ -154,7 +157,10 @@ std::string describePlan(const StudyPlan& p, bool quick, std::size_t runs) {
      << " px. Filter noise in the sweeps: " << p.pixel_scale << " x sigma on u, v and "
      << p.width_scale
      << " x sigma on w (TreeSlamOptions' defaults). Each configuration is run with occlusions "
-        "ignored and with only non-occluded trees.";
+        "ignored and with only non-occluded trees. Built with " __VERSION__
+        ": the runs are bit-identical for one build whatever the threads and shards; another "
+        "compiler changes the last bits of the numbers (about 1e-15 relative), which can tip a "
+        "run at the edge of divergence.";
   if (quick)
     os << " The thesis' full sweep (10 maps, 10 x 10 runs per noise level, 90 per density) is "
           "`tree_width_study` without "
@@ -222,6 +228,12 @@ int main(int argc, char** argv) {
   report->add_option("--command",
                      report_command,
                      "the command to quote in results.md as the way to regenerate it");
+  std::string report_plan;
+  report
+      ->add_option("--plan",
+                   report_plan,
+                   "the sweep the runs come from, to describe it in results.md (quick or full)")
+      ->check(CLI::IsMember({"quick", "full"}));
   CLI11_PARSE(app, argc, argv);
 
   try {
@@ -234,10 +246,14 @@ int main(int argc, char** argv) {
     }
     if (*report) {
       const auto lines = mergeLines(readLines(report_inputs));
+      StudyPlan plan = report_plan == "quick" ? StudyPlan::quick() : StudyPlan{};
+      plan.seed = seed;
       writeReport(lines,
                   docs,
                   report_command.empty() ? "tree_width_study report <runs.jsonl>" : report_command,
-                  "**This report** covers " + std::to_string(lines.size()) + " runs.");
+                  report_plan.empty()
+                      ? "**This report** covers " + std::to_string(lines.size()) + " runs."
+                      : describePlan(plan, report_plan == "quick", lines.size()));
       return 0;
     }
 
@@ -263,13 +279,13 @@ int main(int argc, char** argv) {
     std::cerr << "tree_width_study: " << lines.size() << " runs in " << formatDuration(seconds)
               << ", written to " << out_path << "\n";
     if (!no_report && shard.n == 1 && limit == 0 && max_frames == 0) {
-      std::string command = "tree_width_study";
+      // The documented way to rerun it (scripts/run_study.sh builds and runs this program).
+      std::string command = "bash scripts/run_study.sh";
       if (quick) command += " --quick";
       if (seed != 1) command += " --seed " + std::to_string(seed);
       writeReport(lines,
                   docs,
-                  "./build/examples/tree_width_study/" + command +
-                      "   # from the repository root, after the README's build",
+                  command,
                   describePlan(plan, quick, lines.size()));
     }
   } catch (const std::exception& e) {

@@ -308,7 +308,7 @@ inline void plotNees(const StudyData& d, const fs::path& svg, const fs::path& wo
   gp << "set terminal svg size 900,420 dynamic font 'sans,12' background '#ffffff'\n"
      << "set grid lc rgb '#dddddd'\nset key top left font ',10'\nset logscale y\n"
      << "set output '" << svg.string() << "'\n"
-     << "set xlabel 'time (s)'\nset ylabel 'mean NEES of the camera pose (6 dof)'\n";
+     << "set xlabel 'time (s)'\nset ylabel 'NEES of the camera pose (6 dof)'\n";
   int runs = 0;
   std::ostringstream plots;
   for (std::size_t i = 0; i < pipelineKeys().size(); ++i) {
@@ -320,20 +320,22 @@ inline void plotNees(const StudyData& d, const fs::path& svg, const fs::path& wo
       double sum = 0.0;
       for (double x : v) sum += x;
       runs = std::max<int>(runs, static_cast<int>(v.size()));
-      gp << s * d.nees_every * dt_s << ' ' << (std::isfinite(sum) ? sum / v.size() : NAN) << '\n';
+      std::vector<double> sorted = v;
+      std::sort(sorted.begin(), sorted.end());
+      const double median = sorted.empty() ? NAN : sorted[sorted.size() / 2];
+      gp << s * d.nees_every * dt_s << ' ' << (std::isfinite(sum) ? sum / v.size() : NAN) << ' ' << median << '\n';
     }
     gp << "EOD\n";
-    plots << (plots.tellp() > 0 ? ", " : "") << "$n" << i << " using 1:2 with lines lw 2 lc rgb '"
-          << (i == 0   ? "#555555"
-              : i == 1 ? "#1f77b4"
-                       : "#d62728")
-          << "' title '" << pipelineTitle(pipelineKeys()[i]) << "'";
+    const char* color = i == 0 ? "#555555" : i == 1 ? "#1f77b4" : "#d62728";
+    plots << (plots.tellp() > 0 ? ", " : "") << "$n" << i << " using 1:2 with lines lw 2 lc rgb '" << color << "' title '"
+          << pipelineTitle(pipelineKeys()[i]) << ", mean', $n" << i << " using 1:3 with lines lw 1.5 dt 2 lc rgb '" << color
+          << "' title 'median'";
   }
   if (runs == 0) return;
   const auto [lo, hi] = sylva::averageChiSquareBounds(6, runs);
   gp << "set title 'Camera pose NEES, noise sweep at " << fmt(d.nees_level, "%g")
      << " px, only non-occluded trees, " << runs
-     << " runs per pipeline; 95% bounds of the average'\n";
+     << " runs per pipeline; 95% bounds of the mean'\n";
   gp << "plot " << plots.str() << ", " << lo
      << " with lines dt 2 lc rgb '#2ca02c' title '95% bounds', " << hi
      << " with lines dt 2 lc rgb '#2ca02c' notitle, 6 with lines dt 3 lc rgb '#999999' title 'dof "
