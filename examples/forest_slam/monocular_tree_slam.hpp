@@ -24,7 +24,8 @@
 //      which most others pass is fused first (one-point hypotheses, after Civera et al. 2010).
 //      Refused observations get a second chance against the updated estimate. A batch the
 //      filter refuses as a whole is fused one observation at a time;
-//   3. life cycle (`sylva::TreeLifeCycle`): inverse depth -> XYZ by the linearity index;
+//   3. life cycle (`sylva::TreeLifeCycle`): inverse depth -> XYZ (and IDR -> XYZ-R) by the
+//      linearity index;
 //      with the width sensor, XYZ trees observed in this frame -> XYZ-R once their position
 //      is certain enough, with the radius from this frame's width (`InverseTreeWidth`);
 //   4. trees seen for the first time are added as inverse-depth points
@@ -170,7 +171,8 @@ class MonocularTreeSlam {
     fuseMapped(report);
 
     report.to_xyz = static_cast<int>(life_.convertInverseDepth(ekf_).size());
-    if (options_.pipeline == WidthPipeline::kFromFirstSight) report.to_tree += convertInverseDepthRadius(report);
+    if (options_.pipeline == WidthPipeline::kFromFirstSight)
+      report.to_tree += static_cast<int>(life_.convertInverseDepthRadius(ekf_).size());
     if (options_.pipeline == WidthPipeline::kAfterXyz) {
       for (const Seen& s : mapped_) {
         if (!ekf_.template holds<sylva::Point3>(s.id)) continue;
@@ -212,31 +214,6 @@ class MonocularTreeSlam {
     Seen seen;
     double nis;
   };
-
-  /// IDR -> XYZ-R for every IDR tree whose linearity index (of its inverse-depth part) is
-  /// below the threshold, as inverse depth -> XYZ. Returns the number converted.
-  int convertInverseDepthRadius(FrameReport& report) {
-    ready_.clear();
-    const Vec<3> position = ekf_.robotMean().head<3>();
-    for (const auto& slot : ekf_.slots()) {
-      if (!ekf_.template holds<sylva::InverseDepthRadius>(slot.id)) continue;
-      const Vec<7> l = ekf_.template landmarkMean<sylva::InverseDepthRadius>(slot.id);
-      if (!(l[5] > 0.0)) continue;
-      const double sigma_rho = std::sqrt(std::max(0.0, ekf_.template landmarkCovariance<sylva::InverseDepthRadius>(slot.id)(5, 5)));
-      if (sylva::inverseDepthRadiusLinearityIndex(position, l, sigma_rho) < options_.linearity_threshold)
-        ready_.push_back(slot.id);
-    }
-    int converted = 0;
-    for (Id id : ready_) {
-      try {
-        ekf_.reparametrize(id, sylva::InverseDepthRadiusToTree<sylva::ConstantVelocity3D>{});
-        ++converted;
-      } catch (const sylva::Error&) {
-        ++report.rejected;
-      }
-    }
-    return converted;
-  }
 
   static constexpr double kUnpredictable = std::numeric_limits<double>::infinity();
   static constexpr int kMaxHypotheses = 5;
@@ -404,7 +381,6 @@ class MonocularTreeSlam {
   std::vector<sylva::Observation<XyzPoint>> xyz_batch_;
   std::vector<sylva::Observation<sylva::TreeWidth>> tree_batch_;
   std::vector<sylva::Observation<sylva::InverseDepthTreeWidth>> idr_batch_;
-  std::vector<Id> ready_;
   std::array<double, 4> gate_;  ///< chi-square gate by measurement dimension (2 and 3 used)
   std::vector<Seen> fresh_, mapped_, accepted_, refused_, second_chance_;
   std::vector<Candidate> candidates_;

@@ -11,6 +11,7 @@
 #include <sylva/filter/tree_life_cycle.hpp>
 #include <sylva/measurements/tree_width.hpp>
 
+#include "copy_init.hpp"
 #include "error_helpers.hpp"
 
 // Own namespace: the tests of a folder are compiled as one unity translation unit.
@@ -37,18 +38,9 @@ Vec<13> lookAt(const Vec<3>& position, const Vec<3>& target) {
   return x;
 }
 
-// Test-only initialization that copies a 6-vector (an inverse-depth point) into the state.
-struct CopyInverseDepth {
-  using Robot = ConstantVelocity3D;
-  using Landmark = InverseDepth;
-  static constexpr int kMeasurementDim = 6;
-  static constexpr const char* kName = "CopyInverseDepth";
-  Vec<6> operator()(const Vec<13>&, const Vec<6>& z, JacobianRef<6, 13> J_l_x = {}, JacobianRef<6, 6> J_l_z = {}) const {
-    if (J_l_x) (*J_l_x).setZero();
-    if (J_l_z) (*J_l_z).setIdentity();
-    return z;
-  }
-};
+// Test-only initializations that copy a landmark (an inverse-depth point, an IDR tree) into the state.
+using CopyInverseDepth = sylva_test::CopyInit<ConstantVelocity3D, InverseDepth>;
+using CopyIdr = sylva_test::CopyInit<ConstantVelocity3D, InverseDepthRadius>;
 
 // Inverse-depth point from the camera position towards `target`, with the given rho.
 Vec<6> rayTowards(const Vec<3>& anchor, const Vec<3>& target, double rho) {
@@ -90,6 +82,42 @@ TEST_CASE("inverse depth becomes XYZ when its linearity index falls below the th
   CHECK(TreeLifeCycle<>(kCamera, LinearityIndexBelow{0.01}).convertInverseDepth(strict).empty());
   CHECK(TreeLifeCycle<>(kCamera, LinearityIndexBelow{0.1}).convertInverseDepth(strict) == std::vector<Id>{1});
   CHECK(strict.holds<InverseDepth>(3));
+}
+
+TEST_CASE("an IDR tree becomes XYZ-R by the same linearity rule, inverse-depth points are left alone", "[life_cycle]") {
+  using WithIdr = Ekf<ConstantVelocity3D, InverseDepth, Point3, TreeXYZR, InverseDepthRadius>;
+  const Vec<3> tree(10.0, 0.0, 0.0);
+  const Vec<3> anchor(0.0, 0.0, 1.5);
+  WithIdr ekf(lookAt(anchor, tree), Mat<13, 13>::Identity() * 1e-6);
+  // Ids 1 and 2 as in the inverse-depth case, now as IDR trees (kappa = 0.25 m * rho);
+  // id 3, a well-known inverse-depth point, is for convertInverseDepth, not for this call.
+  const auto idr = [&](const Vec<3>& target, double rho) {
+    Vec<7> l;
+    l << rayTowards(anchor, target, rho), 0.25 * rho;
+    return l;
+  };
+  const auto idrNoise = [](double sigma_rho) {
+    Vec<7> sigmas;
+    sigmas << 0.01, 0.01, 0.01, 0.002, 0.002, sigma_rho, 0.001;
+    return Gaussian<7>::sigmas(sigmas);
+  };
+  ekf.add(1, CopyIdr{}, idr(tree, 1.0 / 10.1), idrNoise(0.001));
+  ekf.add(2, CopyIdr{}, idr(Vec<3>(8.0, 3.0, 0.0), 0.1), idrNoise(0.5));
+  ekf.add(3, CopyInverseDepth{}, rayTowards(anchor, tree, 1.0 / 10.1), inverseDepthNoise(0.001));
+  WithIdr by_hand = ekf;
+
+  const TreeLifeCycle<> life(kCamera);
+  REQUIRE(life.convertInverseDepthRadius(ekf) == std::vector<Id>{1});
+  CHECK(ekf.holds<TreeXYZR>(1));
+  CHECK(ekf.holds<InverseDepthRadius>(2));
+  CHECK(ekf.holds<InverseDepth>(3));
+  by_hand.reparametrize(1, InverseDepthRadiusToTree<ConstantVelocity3D>{});
+  CHECK(ekf.mean() == by_hand.mean());
+  CHECK(ekf.covariance() == by_hand.covariance());
+  CHECK(ekf.landmarkMean<TreeXYZR>(1)[3] == Approx(0.25));
+  // And convertInverseDepth converts the point only.
+  REQUIRE(life.convertInverseDepth(ekf) == std::vector<Id>{3});
+  CHECK(ekf.holds<InverseDepthRadius>(2));
 }
 
 TEST_CASE("XYZ becomes XYZ-R once its position is certain enough", "[life_cycle]") {

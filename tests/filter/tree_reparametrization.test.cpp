@@ -62,15 +62,6 @@ struct OffsetInit {
 
 using Filter = Ekf<ConstantVelocity3D, Point3, TreeXYZR>;
 
-// The filter renormalizes the camera quaternion after every update and carries the
-// covariance through that step's Jacobian; the dense reference does the same here.
-void renormalize(testing::DenseReferenceEkf<ConstantVelocity3D>& ref) {
-  const Mat<13, 13> N = ConstantVelocity3D::normalizationJacobian(ref.x.head<13>());
-  Eigen::MatrixXd J = Eigen::MatrixXd::Identity(ref.dim(), ref.dim());
-  J.topLeftCorner<13, 13>() = N;
-  ref.P = J * ref.P * J.transpose();
-  ref.x.segment<4>(3).normalize();
-}
 
 Mat<13, 13> initialCovariance() {
   Mat<13, 13> P = Mat<13, 13>::Identity() * 1e-4;
@@ -122,7 +113,7 @@ TEST_CASE("XYZ -> XYZ-R with a width measurement equals the dense reference", "[
     const Vec<3> zk = z + Vec<3>(0.3 * k, -0.2, 0.1 * k);
     s.ekf.update(TreeWidth(kCamera), 2, zk, noise);
     s.ref.update(TreeWidth(kCamera), tree_offset, zk, noise.covariance());
-    renormalize(s.ref);
+    s.ref.renormalizeRobot();
   }
   CHECK((s.ekf.mean() - s.ref.x).cwiseAbs().maxCoeff() < 1e-10);
   CHECK((s.ekf.covariance() - s.ref.P).cwiseAbs().maxCoeff() < 1e-10);

@@ -9,6 +9,10 @@
 
 #include "sylva_catch.hpp"
 
+#include <cmath>
+
+#include "error_helpers.hpp"
+
 using namespace sylva;
 using ToPoint3 = InverseDepthToPoint3<ConstantVelocity3D>;
 
@@ -79,6 +83,12 @@ TEST_CASE("the conversion rejects an inverse depth at infinity", "[landmarks][er
   Mat<3, 6> J = Mat<3, 6>::Constant(7.0);
   CHECK_THROWS_WITH(ToPoint3{}(camera(Vec<3>::Zero()), inverseDepth(Vec<3>::Zero(), 0, 0, -0.5), {}, J),
                     Contains("must be > 0"));
+  CHECK(J == Mat<3, 6>::Constant(7.0));
+  // NaN anywhere (here the azimuth, with a usable rho) is reported as non-finite input.
+  Vec<6> nan_azimuth = inverseDepth(Vec<3>::Zero(), 0, 0, 0.5);
+  nan_azimuth[3] = NAN;
+  CHECK_THROWS_WITH(ToPoint3{}(camera(Vec<3>::Zero()), nan_azimuth, {}, J), Contains("not finite"));
+  CHECK(sylva_test::throwsCode([&] { ToPoint3{}(camera(Vec<3>::Zero()), nan_azimuth); }, ErrorCode::kNonFinite));
   CHECK(J == Mat<3, 6>::Constant(7.0));
   CHECK_THROWS_WITH(inverseDepthLinearityIndex(Vec<3>::Zero(), inverseDepth(Vec<3>::Zero(), 0, 0, -1.0), 0.1),
                     Contains("must be > 0"));

@@ -20,6 +20,7 @@
 #include <sylva/testing/check_jacobians.hpp>
 #include <sylva/testing/dense_reference_ekf.hpp>
 
+#include "copy_init.hpp"
 #include "error_helpers.hpp"
 
 // Own namespace: the tests of a folder are compiled as one unity translation unit.
@@ -45,27 +46,8 @@ Vec<13> cameraAt(const Vec<3>& position) {
   return x;
 }
 
-// Puts an IDR tree with a full covariance into a filter: an inverse model that copies a
-// 7-vector "measurement", its anchor taken relative to the camera position.
-struct CopyInitIdr {
-  using Robot = ConstantVelocity3D;
-  using Landmark = InverseDepthRadius;
-  static constexpr int kMeasurementDim = 7;
-  static constexpr const char* kName = "CopyInitIdr";
-  Vec<7> operator()(const Vec<13>& x,
-                    const Vec<7>& z,
-                    JacobianRef<7, 13> J_l_x = {},
-                    JacobianRef<7, 7> J_l_z = {}) const {
-    if (J_l_x) {
-      (*J_l_x).setZero();
-      (*J_l_x).topLeftCorner<3, 3>().setIdentity();
-    }
-    if (J_l_z) (*J_l_z).setIdentity();
-    Vec<7> l = z;
-    l.head<3>() += x.head<3>();
-    return l;
-  }
-};
+// Puts an IDR tree with a full covariance into a filter, its anchor relative to the camera.
+using CopyInitIdr = sylva_test::CopyInit<ConstantVelocity3D, InverseDepthRadius, true>;
 
 }  // namespace
 

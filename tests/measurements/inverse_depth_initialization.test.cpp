@@ -268,15 +268,6 @@ namespace {
 using MonoEkf = Ekf<ConstantVelocity3D, InverseDepth, Point3, TreeXYZR>;
 using Reference = testing::DenseReferenceEkf<ConstantVelocity3D>;
 
-// The filter renormalizes the camera quaternion after every update and carries the
-// covariance through the normalization's Jacobian; the dense reference is made to do the same.
-void renormalize(Reference& ref) {
-  const Mat<13, 13> N = ConstantVelocity3D::normalizationJacobian(ref.x.head<13>());
-  Eigen::MatrixXd J = Eigen::MatrixXd::Identity(ref.dim(), ref.dim());
-  J.topLeftCorner<13, 13>() = N;
-  ref.P = J * ref.P * J.transpose();
-  ref.x.segment<4>(3).normalize();
-}
 
 // A camera 1.5 m above the ground looking along world +x and moving sideways along world +y
 // at 0.5 m/s; its velocity is known well (the scale of a monocular map comes from it).
@@ -407,7 +398,7 @@ TEST_CASE("Monocular EKF: add and updates and the switch to XYZ equal the dense 
           id_model(ekf.robotMean(), ekf.landmarkMean<InverseDepth>(id)) + Vec<2>(1.5, -2.0);
       ekf.update(id_model, id, z, pixel_noise);
       ref.update(id_model, offset, z, pixel_noise.covariance());
-      renormalize(ref);
+      ref.renormalizeRobot();
     }
   }
   CHECK((ekf.mean() - ref.x).cwiseAbs().maxCoeff() < 1e-10);
@@ -422,7 +413,7 @@ TEST_CASE("Monocular EKF: add and updates and the switch to XYZ equal the dense 
   const Vec<2> z = point_model(ekf.robotMean(), ekf.landmarkMean<Point3>(1)) + Vec<2>(-1.0, 0.5);
   ekf.update(point_model, 1, z, pixel_noise);
   ref.update(point_model, offset1_xyz, z, pixel_noise.covariance());
-  renormalize(ref);
+  ref.renormalizeRobot();
   CHECK((ekf.mean() - ref.x).cwiseAbs().maxCoeff() < 1e-10);
   CHECK((ekf.covariance() - ref.P).cwiseAbs().maxCoeff() < 1e-10);
 }

@@ -777,15 +777,6 @@ namespace {
 using TreeEkf = Ekf<ConstantVelocity3D, InverseDepthRadius, TreeXYZR>;
 using Reference = testing::DenseReferenceEkf<ConstantVelocity3D>;
 
-// The filter renormalizes the camera quaternion after every update and carries the
-// covariance through the normalization's Jacobian; the dense reference is made to do the same.
-void renormalize(Reference& ref) {
-  const Mat<13, 13> N = ConstantVelocity3D::normalizationJacobian(ref.x.head<13>());
-  Eigen::MatrixXd J = Eigen::MatrixXd::Identity(ref.dim(), ref.dim());
-  J.topLeftCorner<13, 13>() = N;
-  ref.P = J * ref.P * J.transpose();
-  ref.x.segment<4>(3).normalize();
-}
 
 // A camera 1.5 m above the ground looking along world +x and moving sideways along world +y
 // at 0.5 m/s; its velocity is known well (the scale of a monocular map comes from it).
@@ -841,7 +832,7 @@ TEST_CASE("IDR EKF: add, width updates and the switch to XYZ-R equal the dense r
                        Vec<3>(1.5, -2.0, 0.7);
       ekf.update(idr_model, id, z, width_noise);
       ref.update(idr_model, offset, z, width_noise.covariance());
-      renormalize(ref);
+      ref.renormalizeRobot();
     }
   }
   CHECK((ekf.mean() - ref.x).cwiseAbs().maxCoeff() < 1e-10);
@@ -884,13 +875,13 @@ TEST_CASE("IDR EKF: add, width updates and the switch to XYZ-R equal the dense r
       xyzr_model(ekf.robotMean(), ekf.landmarkMean<TreeXYZR>(1)) + Vec<3>(-1.0, 0.5, -0.4);
   ekf.update(xyzr_model, 1, z1_next, width_noise);
   ref.update(xyzr_model, offset1_xyzr, z1_next, width_noise.covariance());
-  renormalize(ref);
+  ref.renormalizeRobot();
   const int offset2 = ekf.slot(2).offset;
   const Vec<3> z2_next =
       idr_model(ekf.robotMean(), ekf.landmarkMean<InverseDepthRadius>(2)) + Vec<3>(0.5, 0.5, 0.3);
   ekf.update(idr_model, 2, z2_next, width_noise);
   ref.update(idr_model, offset2, z2_next, width_noise.covariance());
-  renormalize(ref);
+  ref.renormalizeRobot();
   CHECK((ekf.mean() - ref.x).cwiseAbs().maxCoeff() < 1e-10);
   CHECK((ekf.covariance() - ref.P).cwiseAbs().maxCoeff() < 1e-10);
 }

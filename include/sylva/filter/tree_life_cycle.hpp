@@ -6,6 +6,8 @@
 /// tree-width model (Sec. 3.3) and this frame's width measurement.
 ///
 ///   InverseDepth --[ToXyz rule]--> Point3 --[ToTree rule + width z]--> TreeXYZR
+///   InverseDepthRadius --[ToXyz rule]--> TreeXYZR      (trees with the width from the first
+///                                                      sighting, beyond the thesis)
 ///
 /// The switching rules are policies: any type with
 /// `template <class Filter> bool operator()(const Filter& ekf, Id id) const`. The defaults
@@ -14,7 +16,8 @@
 /// (number of frames, parallax, a relative uncertainty, ...).
 ///
 /// Works with any `Ekf<ConstantVelocity3D, ...>` that holds InverseDepth, Point3 and
-/// TreeXYZR. To run without the tree-width sensor, simply never call `convertToTree`.
+/// TreeXYZR (and InverseDepthRadius for `convertInverseDepthRadius`). To run without the
+/// tree-width sensor, simply never call `convertToTree`.
 
 #include <algorithm>
 #include <cmath>
@@ -26,6 +29,7 @@
 #include "sylva/core/error.hpp"
 #include "sylva/core/types.hpp"
 #include "sylva/landmarks/inverse_depth.hpp"
+#include "sylva/landmarks/inverse_depth_radius.hpp"
 #include "sylva/landmarks/point3.hpp"
 #include "sylva/landmarks/tree_xyzr.hpp"
 #include "sylva/measurements/inverse_tree_width.hpp"
@@ -35,17 +39,27 @@
 
 namespace sylva {
 
-/// Inverse depth -> XYZ when the linearity index of the point seen from the current camera
-/// position is below `threshold` (0.1 is the usual value). A point with rho <= 0 (at or
-/// beyond infinity) is not ready.
+/// Inverse depth -> XYZ (and IDR -> XYZ-R) when the linearity index of the point (the base
+/// centre) seen from the current camera position is below `threshold` (0.1 is the usual
+/// value). A point with rho <= 0 (at or beyond infinity) is not ready.
 struct LinearityIndexBelow {
   double threshold = 0.1;
 
   template <typename Filter>
   bool operator()(const Filter& ekf, Id id) const {
-    const Vec<6> l = ekf.template landmarkMean<InverseDepth>(id);
+    if constexpr (Filter::template kHolds<InverseDepthRadius>) {
+      if (ekf.template holds<InverseDepthRadius>(id)) return ready<InverseDepthRadius>(ekf, id);
+    }
+    return ready<InverseDepth>(ekf, id);
+  }
+
+ private:
+  // Landmark: InverseDepth, or InverseDepthRadius, whose first six entries are one.
+  template <typename Landmark, typename Filter>
+  bool ready(const Filter& ekf, Id id) const {
+    const Vec<6> l = ekf.template landmarkMean<Landmark>(id).template head<6>();
     if (!(l[5] > 0.0)) return false;
-    const double var_rho = ekf.template landmarkCovariance<InverseDepth>(id)(5, 5);
+    const double var_rho = ekf.template landmarkCovariance<Landmark>(id)(5, 5);
     const double sigma_rho = std::sqrt(std::max(0.0, var_rho));
     return inverseDepthLinearityIndex(ekf.robotMean().template head<3>(), l, sigma_rho) < threshold;
   }
@@ -83,6 +97,19 @@ class TreeLifeCycle {
       if (ekf.template holds<InverseDepth>(slot.id) && to_xyz_(ekf, slot.id)) ready.push_back(slot.id);
     }
     for (Id id : ready) ekf.reparametrize(id, InverseDepthToPoint3<ConstantVelocity3D>{});
+    return ready;
+  }
+
+  /// Converts every InverseDepthRadius tree whose ToXyz rule fires straight to XYZ-R (its
+  /// radius is already estimated; covariance through InverseDepthRadiusToTree's Jacobian).
+  /// Returns the converted ids.
+  template <typename Filter>
+  std::vector<Id> convertInverseDepthRadius(Filter& ekf) const {
+    std::vector<Id> ready;
+    for (const auto& slot : ekf.slots()) {
+      if (ekf.template holds<InverseDepthRadius>(slot.id) && to_xyz_(ekf, slot.id)) ready.push_back(slot.id);
+    }
+    for (Id id : ready) ekf.reparametrize(id, InverseDepthRadiusToTree<ConstantVelocity3D>{});
     return ready;
   }
 

@@ -64,14 +64,15 @@ struct InverseDepthToPoint3 {
                     const Vec<6>& l,
                     JacobianRef<3, Robot_::kDim> J_to_x = {},
                     JacobianRef<3, 6> J_to_l = {}) const {
+    if (!l.allFinite()) fail(ErrorCode::kNonFinite, "InverseDepthToPoint3: the landmark is not finite");
     const double rho = l[5];
     // rho <= 0 puts the point at infinity or behind its anchor: an estimate that has not
     // settled, whose Euclidean form would be meaningless (and singular at rho = 0).
-    if (!(rho > 1e-12) || !l.allFinite()) {
+    if (!(rho > 1e-12)) {
       std::ostringstream os;
       os << "InverseDepthToPoint3: inverse depth " << rho
          << " 1/m is not usable for a Euclidean point (it must be > 0: in front of the anchor)";
-      fail(std::isfinite(rho) ? ErrorCode::kDegenerateGeometry : ErrorCode::kNonFinite, os.str());
+      fail(ErrorCode::kDegenerateGeometry, os.str());
     }
     const double ct = std::cos(l[3]), st = std::sin(l[3]);
     const double cp = std::cos(l[4]), sp = std::sin(l[4]);

@@ -61,9 +61,8 @@ struct InverseDepthRadius {
 ///
 ///   [c, r] = [anchor + m(theta, phi) / rho, kappa / rho],
 ///
-/// J_to_x = 0; J_to_l (4x7): the base centre's rows as `InverseDepthToPoint3` (identity in
-/// the anchor, dm/dtheta / rho, dm/dphi / rho, -m / rho^2, 0 for kappa); the radius row is
-/// [0, 0, 0, 0, 0, -kappa / rho^2, 1 / rho].
+/// J_to_x = 0; J_to_l (4x7): the base centre's rows are `InverseDepthToPoint3`'s (which
+/// computes them) and 0 for kappa; the radius row is [0, 0, 0, 0, 0, -kappa / rho^2, 1 / rho].
 template <typename Robot_>
 struct InverseDepthRadiusToTree {
   using Robot = Robot_;
@@ -93,22 +92,20 @@ struct InverseDepthRadiusToTree {
          << " must be > 0 (a trunk of positive radius)";
       fail(ErrorCode::kDegenerateGeometry, os.str());
     }
-    const double ct = std::cos(l[3]), st = std::sin(l[3]);
-    const double cp = std::cos(l[4]), sp = std::sin(l[4]);
-    const Vec<3> m(cp * ct, cp * st, sp);
+    // The base centre is InverseDepthToPoint3 of the first six entries (valid: checked above).
+    Mat<3, 6> J_c_l;
+    const Vec<3> centre =
+        InverseDepthToPoint3<Robot_>{}(Vec<Robot_::kDim>::Zero(), l.template head<6>(), {}, J_c_l);
     if (J_to_x) (*J_to_x).setZero();
     if (J_to_l) {
       auto J = *J_to_l;
       J.setZero();
-      J.template topLeftCorner<3, 3>().setIdentity();
-      J.template block<3, 1>(0, 3) = Vec<3>(-cp * st, cp * ct, 0.0) / rho;  // d m / d theta
-      J.template block<3, 1>(0, 4) = Vec<3>(-sp * ct, -sp * st, cp) / rho;  // d m / d phi
-      J.template block<3, 1>(0, 5) = -m / (rho * rho);
+      J.template topLeftCorner<3, 6>() = J_c_l;
       J(3, 5) = -kappa / (rho * rho);
       J(3, 6) = 1.0 / rho;
     }
     Vec<4> tree;
-    tree << l.head<3>() + m / rho, kappa / rho;
+    tree << centre, kappa / rho;
     return tree;
   }
 };

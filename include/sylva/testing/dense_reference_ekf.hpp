@@ -94,6 +94,20 @@ struct DenseReferenceEkf {
     x.tail(L) = l;
   }
 
+  /// Mirrors what the filter does after an update for a robot with a normalization (the
+  /// quaternion of ConstantVelocity3D): the robot block is renormalized and the covariance
+  /// carried through `Robot::normalizationJacobian`. Call it after `update` or `add`.
+  void renormalizeRobot() {
+    static_assert(detail::HasNormalizationJacobian<Robot>::value, "this robot has no normalization to mirror");
+    const Vec<kRobotDim> robot_state = x.template head<kRobotDim>();
+    Eigen::MatrixXd J = Eigen::MatrixXd::Identity(dim(), dim());
+    J.template topLeftCorner<kRobotDim, kRobotDim>() = Robot::normalizationJacobian(robot_state);
+    P = J * P * J.transpose();
+    Vec<kRobotDim> normalized = robot_state;
+    Robot::normalize(normalized);
+    x.template head<kRobotDim>() = normalized;
+  }
+
   /// Deletes rows and columns [offset, offset + d).
   void remove(int offset, int d) {
     const int n = dim();
