@@ -1,11 +1,22 @@
 // predict and update allocate nothing once the filter has seen its largest state: counted
-// with a replaced global operator new (Eigen's own allocations go through malloc, so they
-// are checked as well through EIGEN_RUNTIME_NO_MALLOC).
+// with a replaced global operator new. Eigen's own allocations go through malloc, so they
+// are caught through EIGEN_RUNTIME_NO_MALLOC, whose check is an eigen_assert: this file
+// routes eigen_assert to a counter, so that the check works in Release (NDEBUG) builds too.
 
-#define EIGEN_RUNTIME_NO_MALLOC
 #include <atomic>
+#include <cstdio>
 #include <cstdlib>
 #include <new>
+
+namespace {
+std::atomic<long> g_eigen_assert_failures{0};
+inline void countEigenAssertFailure(const char* what) {
+  ++g_eigen_assert_failures;
+  std::fprintf(stderr, "eigen_assert failed: %s\n", what);
+}
+}  // namespace
+#define EIGEN_RUNTIME_NO_MALLOC
+#define eigen_assert(x) ((x) ? static_cast<void>(0) : countEigenAssertFailure(#x))
 
 #include <sylva/sylva.hpp>
 
@@ -56,6 +67,7 @@ TEMPLATE_TEST_CASE("predict and a single update do not allocate in steady state"
   }
   Eigen::internal::set_is_malloc_allowed(true);
   CHECK(g_allocations.load() - before == 0);
+  CHECK(g_eigen_assert_failures.load() == 0);
 }
 
 TEST_CASE("the monocular tree filter's predict and updates do not allocate in steady state", "[filter][allocation]") {
@@ -100,5 +112,37 @@ TEST_CASE("the monocular tree filter's predict and updates do not allocate in st
   }
   Eigen::internal::set_is_malloc_allowed(true);
   CHECK(g_allocations.load() - before == 0);
+  CHECK(g_eigen_assert_failures.load() == 0);
   CHECK(ekf.holds<TreeXYZR>(25));
+}
+
+// A map big enough that one untiled rank-24 update would make Eigen pack its panels on the
+// heap (24 x 803 doubles > 128 KiB), and batches of changing size after the largest one.
+TEST_CASE("batched updates do not allocate in steady state, whatever the batch size", "[filter][allocation]") {
+  Ekf<Unicycle2D, Point2> ekf(Vec<3>(0.0, 0.0, 0.1), Mat<3, 3>::Identity() * 0.01);
+  const auto r = Gaussian<2>::sigmas(Vec<2>(0.05, 0.02));
+  const auto q = Gaussian<2>::sigmas(Vec<2>(0.05, 0.02));
+  for (int i = 0; i < 400; ++i) ekf.add(i, InverseRangeBearing{}, Vec<2>(3.0 + 0.05 * i, -1.5 + 0.0075 * i), r);
+  std::vector<Observation<RangeBearing>> batch;
+  batch.reserve(12);
+  auto observe = [&](int k, int first) {
+    batch.clear();
+    for (int j = 0; j < k; ++j) {
+      const Id id = (first + 33 * j) % 400;
+      const Vec<2> z = RangeBearing{}(ekf.robotMean(), ekf.landmarkMean<Point2>(id)) + Vec<2>(0.01, -0.002);
+      batch.push_back(Observation<RangeBearing>{id, z, r});
+    }
+    ekf.update(RangeBearing{}, batch);
+  };
+  observe(12, 0);  // warm-up with the largest batch: sizes the workspaces
+
+  const long before = g_allocations.load();
+  Eigen::internal::set_is_malloc_allowed(false);
+  for (int step = 0; step < 6; ++step) {
+    ekf.predict(Vec<2>(0.5, 0.05), 0.1, q);
+    observe(12 - step, step);
+  }
+  Eigen::internal::set_is_malloc_allowed(true);
+  CHECK(g_allocations.load() - before == 0);
+  CHECK(g_eigen_assert_failures.load() == 0);
 }

@@ -37,6 +37,7 @@
 #include "sylva/core/error.hpp"
 #include "sylva/core/jacobian_ref.hpp"
 #include "sylva/core/types.hpp"
+#include "sylva/detail/lower_rank_update.hpp"
 #include "sylva/detail/model_traits.hpp"
 #include "sylva/filter/linearization.hpp"
 #include "sylva/filter/update_form.hpp"
@@ -51,6 +52,64 @@ struct Observation {
   Vec<Model::kDim> z;
   Gaussian<Model::kDim> noise;
 };
+
+/// How `update(model, observations, fusion)` fuses a range of observations.
+enum class Fusion {
+  kBatched,     ///< one stacked update: one linearization point, one pass over P
+  kSequential,  ///< one update per observation, each linearized after the previous one
+};
+
+namespace detail {
+
+/// The Jacobian blocks and landmark offsets of the k observations of a batched update, kept
+/// in buffers the filter reuses (they grow only when a larger batch is seen).
+template <int M, int R, int L>
+class BatchLinearizations {
+ public:
+  static constexpr int kStride = M * R + M * L;
+  BatchLinearizations(Eigen::VectorXd& buffer, std::vector<int>& offsets, int k)
+      : offsets_(offsets) {
+    if (buffer.size() < static_cast<Eigen::Index>(k) * kStride) buffer.resize(static_cast<Eigen::Index>(k) * kStride);
+    offsets_.resize(static_cast<std::size_t>(k));
+    data_ = buffer.data();
+  }
+  template <typename Lin>
+  void store(int a, const Lin& lin) {
+    J_z_x(a) = lin.J_z_x;
+    J_z_l(a) = lin.J_z_l;
+    offsets_[static_cast<std::size_t>(a)] = lin.landmark_offset;
+  }
+  Eigen::Map<Mat<M, R>> J_z_x(int a) const { return Eigen::Map<Mat<M, R>>(data_ + a * kStride); }
+  Eigen::Map<Mat<M, L>> J_z_l(int a) const { return Eigen::Map<Mat<M, L>>(data_ + a * kStride + M * R); }
+  int offset(int a) const { return offsets_[static_cast<std::size_t>(a)]; }
+
+ private:
+  std::vector<int>& offsets_;
+  double* data_ = nullptr;
+};
+
+/// Reusable buffers of the batched update (innovation, S, R, L^-1 nu, linearizations).
+struct BatchWorkspace {
+  enum Slot { kInnovation, kInnovationCovariance, kNoise, kWhitenedInnovation, kSlotCount };
+  Eigen::VectorXd buffers[kSlotCount];
+  Eigen::VectorXd lins;
+  std::vector<int> offsets;
+
+  Eigen::Map<Eigen::VectorXd> vector(Slot slot, int size) {
+    return Eigen::Map<Eigen::VectorXd>(grown(slot, size), size);
+  }
+  Eigen::Map<Eigen::MatrixXd> matrix(Slot slot, int rows) {
+    return Eigen::Map<Eigen::MatrixXd>(grown(slot, static_cast<Eigen::Index>(rows) * rows), rows, rows);
+  }
+
+ private:
+  double* grown(Slot slot, Eigen::Index size) {
+    if (buffers[slot].size() < size) buffers[slot].resize(size);
+    return buffers[slot].data();
+  }
+};
+
+}  // namespace detail
 
 /// Where a landmark lives in the state.
 struct LandmarkSlot {
@@ -158,6 +217,13 @@ class BasicEkf {
   /// Copy of the whole mean (n).
   Eigen::VectorXd mean() const { return mean_.head(n_); }
 
+  /// The covariance as a symmetric view of the stored lower triangle, without a copy: use it
+  /// in products (`ekf.covarianceView() * v`) or assign it to a dense matrix. Its entries
+  /// above the diagonal are not stored: read single entries from the lower triangle, or
+  /// through the typed blocks below. Valid until a landmark is added, removed or
+  /// reparametrized (the storage may move).
+  auto covarianceView() const { return cov_.topLeftCorner(n_, n_).template selfadjointView<Eigen::Lower>(); }
+
   /// Copy of the whole covariance (n x n, both triangles filled).
   Eigen::MatrixXd covariance() const {
     Eigen::MatrixXd full = cov_.topLeftCorner(n_, n_).template selfadjointView<Eigen::Lower>();
@@ -207,7 +273,7 @@ class BasicEkf {
 
     auto PHt = workspaceMatrix<M>(0);
     PHt.setZero();
-    accumulateCovarianceTimesHt<Model>(lin, PHt, 0);
+    accumulateCovarianceTimesHt<Model::Landmark::kDim>(lin.J_z_x, lin.J_z_l, lin.landmark_offset, PHt, 0);
     Mat<M, M> S = lin.J_z_x * PHt.template topRows<kRobotDim>() +
                   lin.J_z_l * PHt.template middleRows<Model::Landmark::kDim>(lin.landmark_offset) +
                   noise.covariance();
@@ -226,42 +292,57 @@ class BasicEkf {
     return Innovation<M>{nu, S};
   }
 
-  /// Fuses several observations through one model in a single update (the stacked H of all
-  /// of them, one pass over P). Ids may repeat only if the caller means it (two
-  /// independent measurements of the same landmark).
+  /// Fuses several observations through one model. `Fusion::kBatched` (the default) stacks
+  /// them into one update: every prediction and Jacobian is taken at the same estimate, and
+  /// P is updated once by a rank-(k m) product on its lower triangle. `Fusion::kSequential`
+  /// fuses them one after the other, each linearized at the estimate the previous one left:
+  /// k passes over P, closer to the iterated estimate when the models are very non-linear.
+  /// See docs/filter.md ("Batched or sequential") for when each wins.
+  ///
+  /// Ids may repeat only if the caller means it (two independent measurements of the same
+  /// landmark). Errors: the batched form throws before anything is written (the filter is
+  /// unchanged); the sequential form checks every id, type and measurement first, and if a
+  /// later observation is then rejected (S not positive definite, a posterior out of the
+  /// landmark's domain), the observations before it stay fused and the error names its index.
   template <typename Model, typename ObservationRange>
-  void update(const Model& model, const ObservationRange& observations) {
+  void update(const Model& model, const ObservationRange& observations, Fusion fusion = Fusion::kBatched) {
     checkModel<Model>();
+    if (fusion == Fusion::kSequential) {
+      updateSequentially(model, observations);
+      return;
+    }
     constexpr int M = Model::kDim;
+    constexpr int L = Model::Landmark::kDim;
     const int k = static_cast<int>(std::size(observations));
     if (k == 0) return;
     const int total = k * M;
-    std::vector<Linearization<Model>> lins;  // k small blocks; the batch path may allocate
-    lins.reserve(static_cast<std::size_t>(k));
-    Eigen::VectorXd& nu = batch_nu_;
-    nu.resize(total);  // no reallocation once the largest batch has been seen
+    // Every workspace below grows only when a larger state or batch is seen: no allocation
+    // in steady state.
+    detail::BatchLinearizations<M, kRobotDim, L> lins(batch_.lins, batch_.offsets, k);
+    auto nu = batch_.vector(detail::BatchWorkspace::kInnovation, total);
     int i = 0;
     for (const Observation<Model>& obs : observations) {
       if (!obs.z.allFinite())
         fail(ErrorCode::kNonFinite, nameOf<Model>() + ": measurement " + std::to_string(i) +
                                         " of the batch is not finite");
-      lins.push_back(linearize(model, obs.id));
-      nu.template segment<M>(i * M) = detail::residual(model, obs.z, lins.back().z_hat);
+      const Linearization<Model> lin = linearize(model, obs.id);
+      lins.store(i, lin);
+      nu.template segment<M>(i * M) = detail::residual(model, obs.z, lin.z_hat);
       ++i;
     }
     if (!nu.allFinite()) fail(ErrorCode::kNonFinite, nameOf<Model>() + ": innovation is not finite");
 
     auto PHt = workspaceMatrix<Eigen::Dynamic>(total);
     PHt.setZero();
-    for (int a = 0; a < k; ++a) accumulateCovarianceTimesHt<Model>(lins[a], PHt, a * M);
-    Eigen::MatrixXd& S = batch_S_;
-    S.resize(total, total);
+    for (int a = 0; a < k; ++a) accumulateCovarianceTimesHt<L>(lins.J_z_x(a), lins.J_z_l(a), lins.offset(a), PHt, a * M);
+    // S = H P H^T + R, lower triangle (block (a, b) for b <= a), from the columns of P H^T.
+    auto S = batch_.matrix(detail::BatchWorkspace::kInnovationCovariance, total);
     for (int a = 0; a < k; ++a) {
+      const int off = lins.offset(a);
       for (int b = 0; b <= a; ++b) {
         const auto col = PHt.middleCols(b * M, M);
         S.block(a * M, b * M, M, M).noalias() =
-            lins[a].J_z_x * col.template topRows<kRobotDim>() +
-            lins[a].J_z_l * col.template middleRows<Model::Landmark::kDim>(lins[a].landmark_offset);
+            lins.J_z_x(a) * col.template topRows<kRobotDim>() + lins.J_z_l(a) * col.template middleRows<L>(off);
       }
     }
     i = 0;
@@ -269,25 +350,27 @@ class BasicEkf {
       S.block(i * M, i * M, M, M) += obs.noise.covariance();
       ++i;
     }
-    S.template triangularView<Eigen::StrictlyUpper>() = S.transpose();
-    Eigen::LLT<Eigen::MatrixXd>& llt = batch_llt_;
-    llt.compute(S);
-    if (llt.info() != Eigen::Success || !S.allFinite())
+    for (int j = 0; j < total; ++j)
+      if (!S.col(j).tail(total - j).allFinite())
+        fail(ErrorCode::kNonFinite, nameOf<Model>() + ": batched innovation covariance is not finite");
+    // The joint R, kept for the Joseph form only.
+    auto R = batch_.matrix(detail::BatchWorkspace::kNoise, std::is_same_v<UpdateForm, JosephUpdate> ? total : 0);
+    if constexpr (std::is_same_v<UpdateForm, JosephUpdate>) {
+      R.setZero();
+      i = 0;
+      for (const Observation<Model>& obs : observations) {
+        R.block(i * M, i * M, M, M) = obs.noise.covariance();
+        ++i;
+      }
+    }
+    Eigen::LLT<Eigen::Ref<Eigen::MatrixXd>> llt(S);  // in place: S now holds its factor L
+    if (llt.info() != Eigen::Success)
       fail(ErrorCode::kNotPositiveDefinite,
            nameOf<Model>() + ": batched innovation covariance is not positive definite");
-    Eigen::MatrixXd& R = batch_R_;
-    R.setZero(total, total);
-    i = 0;
-    for (const Observation<Model>& obs : observations) {
-      R.block(i * M, i * M, M, M) = obs.noise.covariance();
-      ++i;
-    }
     applyGain<Eigen::Dynamic>(PHt, llt, nu, R, [&](const auto& A, auto&& out) {
       for (int a = 0; a < k; ++a) {
-        out.middleCols(a * M, M).noalias() = A.template middleCols<kRobotDim>(0) * lins[a].J_z_x.transpose();
-        out.middleCols(a * M, M).noalias() +=
-            A.template middleCols<Model::Landmark::kDim>(lins[a].landmark_offset) *
-            lins[a].J_z_l.transpose();
+        out.middleCols(a * M, M).noalias() = A.template middleCols<kRobotDim>(0) * lins.J_z_x(a).transpose();
+        out.middleCols(a * M, M).noalias() += A.template middleCols<L>(lins.offset(a)) * lins.J_z_l(a).transpose();
       }
     });
   }
@@ -453,6 +536,33 @@ class BasicEkf {
   }
 
  private:
+  /// `update(model, observations, Fusion::kSequential)`: checks ids, types and measurements
+  /// of all, then fuses them one by one.
+  template <typename Model, typename ObservationRange>
+  void updateSequentially(const Model& model, const ObservationRange& observations) {
+    int i = 0;
+    for (const Observation<Model>& obs : observations) {
+      if (!obs.z.allFinite())
+        fail(ErrorCode::kNonFinite, nameOf<Model>() + ": measurement " + std::to_string(i) +
+                                        " of the sequence is not finite");
+      typedSlot<typename Model::Landmark>(obs.id, Model::kName);
+      ++i;
+    }
+    i = 0;
+    for (const Observation<Model>& obs : observations) {
+      try {
+        update(model, obs.id, obs.z, obs.noise);
+      } catch (const Error& e) {
+        std::string why = e.what();
+        const std::string prefix = std::string("sylva: ") + toString(e.code()) + ": ";
+        if (why.compare(0, prefix.size(), prefix) == 0) why.erase(0, prefix.size());
+        fail(e.code(), "sequential update stopped at observation " + std::to_string(i) + " (the " +
+                           std::to_string(i) + " before it stay fused): " + why);
+      }
+      ++i;
+    }
+  }
+
   // ---------------------------------------------------------------- checks
 
   template <typename Model>
@@ -620,26 +730,25 @@ class BasicEkf {
     return Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, M>>(workspace_b_.data(), n_, cols);
   }
 
-  /// out(:, col0 .. col0 + m) += P H^T for one linearization, reading the robot and landmark
-  /// columns of P from the lower triangle in three pieces each. O(n m).
-  template <typename Model, typename Out>
-  void accumulateCovarianceTimesHt(const Linearization<Model>& lin, Out& out, int col0) const {
-    constexpr int M = Model::kDim;
-    constexpr int L = Model::Landmark::kDim;
+  /// out(:, col0 .. col0 + m) += P H^T for one observation whose H has the blocks J_z_x
+  /// (robot) and J_z_l (landmark at offset o), reading the robot and landmark columns of P
+  /// from the lower triangle in three pieces each. O(n m).
+  template <int L, typename Jx, typename Jl, typename Out>
+  void accumulateCovarianceTimesHt(const Jx& J_z_x, const Jl& J_z_l, int o, Out& out, int col0) const {
+    constexpr int M = Jx::RowsAtCompileTime;
     auto dest = out.template middleCols<M>(col0);
     // Robot columns of P (offset 0): rows [0, r) are the robot block, rows [r, n) are stored.
     dest.template topRows<kRobotDim>().noalias() +=
-        symmetricBlock<kRobotDim, kRobotDim>(0, 0) * lin.J_z_x.transpose();
+        symmetricBlock<kRobotDim, kRobotDim>(0, 0) * J_z_x.transpose();
     const int below_robot = n_ - kRobotDim;
     dest.bottomRows(below_robot).noalias() +=
-        cov_.block(kRobotDim, 0, below_robot, kRobotDim) * lin.J_z_x.transpose();
+        cov_.block(kRobotDim, 0, below_robot, kRobotDim) * J_z_x.transpose();
     // Landmark columns of P at offset o: rows [0, o) are the transposed stored row block,
     // rows [o, o + L) the diagonal block, rows [o + L, n) are stored.
-    const int o = lin.landmark_offset;
-    dest.topRows(o).noalias() += cov_.block(o, 0, L, o).transpose() * lin.J_z_l.transpose();
-    dest.template middleRows<L>(o).noalias() += symmetricBlock<L, L>(o, o) * lin.J_z_l.transpose();
+    dest.topRows(o).noalias() += cov_.block(o, 0, L, o).transpose() * J_z_l.transpose();
+    dest.template middleRows<L>(o).noalias() += symmetricBlock<L, L>(o, o) * J_z_l.transpose();
     const int below = n_ - o - L;
-    dest.bottomRows(below).noalias() += cov_.block(o + L, o, below, L) * lin.J_z_l.transpose();
+    dest.bottomRows(below).noalias() += cov_.block(o + L, o, below, L) * J_z_l.transpose();
   }
 
   /// Applies the gain for P H^T (n x M, overwritten), the Cholesky factor of S, the
@@ -672,15 +781,30 @@ class BasicEkf {
       (void)R;
       (void)applyHt;
       // W = PHt L^-T (in place), x += W L^-1 nu, P -= W W^T on the lower triangle.
-      llt.matrixU().template solveInPlace<Eigen::OnTheRight>(PHt);
-      const Eigen::Matrix<double, M, 1> v = llt.matrixL().solve(nu);
       auto delta = meanIncrement();
-      delta.noalias() = PHt * v;
+      if constexpr (M == Eigen::Dynamic) {
+        // A triangular solve from the right treats every row on its own: solve in row blocks
+        // small enough that Eigen keeps its packed panels on the stack.
+        const int cols = static_cast<int>(PHt.cols());
+        const int block = detail::lowerRankUpdateTile(cols);
+        for (int r0 = 0; r0 < n_; r0 += block) {
+          auto rows = PHt.middleRows(r0, std::min(block, n_ - r0));
+          llt.matrixU().template solveInPlace<Eigen::OnTheRight>(rows);
+        }
+        auto v = batch_.vector(detail::BatchWorkspace::kWhitenedInnovation, cols);
+        v = nu;
+        llt.matrixL().solveInPlace(v);
+        delta.noalias() = PHt * v;
+      } else {
+        llt.matrixU().template solveInPlace<Eigen::OnTheRight>(PHt);
+        const Eigen::Matrix<double, M, 1> v = llt.matrixL().solve(nu);
+        delta.noalias() = PHt * v;
+      }
       checkPosteriorDomain(delta);  // may throw; nothing of the filter is written yet
       mean_.head(n_) += delta;
       if constexpr (M == Eigen::Dynamic) {
-        // Batches: Eigen's blocked symmetric rank-k update of the lower triangle.
-        P.template selfadjointView<Eigen::Lower>().rankUpdate(PHt, -1.0);
+        // Batches: a tiled symmetric rank-k update of the lower triangle.
+        detail::subtractLowerRankUpdate(P, PHt);
       } else {
         // One column at a time: a fixed-size GEMV per column, one pass over half of P.
         for (int j = 0; j < n_; ++j) {
@@ -779,10 +903,7 @@ class BasicEkf {
   Eigen::VectorXd workspace_a_;
   Eigen::VectorXd workspace_b_;
   Eigen::VectorXd delta_;
-  Eigen::VectorXd batch_nu_;
-  Eigen::MatrixXd batch_S_;
-  Eigen::MatrixXd batch_R_;
-  Eigen::LLT<Eigen::MatrixXd> batch_llt_;
+  detail::BatchWorkspace batch_;
 };
 
 /// The filter with the default covariance update (symmetric form, one triangle).
