@@ -9,6 +9,11 @@
 ///   BM_FrameWithWidth       one full frame of the run with the tree-width sensor: predict,
 ///                           batched updates of every tree in view, life cycle, new trees
 ///   BM_FrameWithoutWidth    the same frame of the run without it (baseline)
+///   BM_FrameSplit/<pipeline> the frames of lap 2 of a run (the thesis' pipeline, or the one
+///                           without width), each timed by phase through
+///                           MonocularTreeSlam::setProfile: counters predict_us, gating_us,
+///                           point_updates_us, width_updates_us, reparametrize_us, add_us per
+///                           frame (and their sum, profiled_us). One iteration is the whole lap.
 ///
 /// Setup (outside the timed loop): the scenario is simulated and both runs are driven to the
 /// end of lap 1. Updates measure z = z_hat +/- a small fixed offset with alternating sign so
@@ -22,7 +27,7 @@
 
 #include <sylva/sim/forest_scenario.hpp>
 
-#include "../examples/forest_slam/monocular_tree_slam.hpp"
+#include "monocular_tree_slam.hpp"
 
 namespace {
 
@@ -112,10 +117,40 @@ void timeFrame(benchmark::State& state, const MonocularTreeSlam& start) {
 void BM_FrameWithWidth(benchmark::State& state) { timeFrame(state, *setup().with_width); }
 void BM_FrameWithoutWidth(benchmark::State& state) { timeFrame(state, *setup().without_width); }
 
+/// Lap 2 of the scenario from the end-of-lap-1 state of `start`, profiled by phase.
+void timeLapByPhase(benchmark::State& state, const MonocularTreeSlam& start) {
+  const Setup& s = setup();
+  const auto& frames = s.scenario.frames;
+  forest_slam::FrameProfile profile;
+  for (auto _ : state) {
+    state.PauseTiming();
+    MonocularTreeSlam slam = start;
+    slam.setProfile(&profile);
+    state.ResumeTiming();
+    for (int k = s.next_frame; k < static_cast<int>(frames.size()) && frames[k].lap == 1; ++k)
+      benchmark::DoNotOptimize(slam.processFrame(frames[k].t_s - frames[k - 1].t_s, s.scenario.observations[k]));
+  }
+  const double per_frame_us = profile.frames > 0 ? 1e6 / profile.frames : 0.0;
+  state.counters["frames_per_lap"] = static_cast<double>(profile.frames) / static_cast<double>(state.iterations());
+  state.counters["predict_us"] = profile.predict_s * per_frame_us;
+  state.counters["gating_us"] = profile.gating_s * per_frame_us;
+  state.counters["point_updates_us"] = profile.point_updates_s * per_frame_us;
+  state.counters["width_updates_us"] = profile.width_updates_s * per_frame_us;
+  state.counters["reparametrize_us"] = profile.reparametrize_s * per_frame_us;
+  state.counters["add_us"] = profile.add_s * per_frame_us;
+  state.counters["profiled_us"] = profile.total_s() * per_frame_us;
+  state.counters["state_dim"] = start.filter().dim();
+}
+
+void BM_FrameSplitWithWidth(benchmark::State& state) { timeLapByPhase(state, *setup().with_width); }
+void BM_FrameSplitWithoutWidth(benchmark::State& state) { timeLapByPhase(state, *setup().without_width); }
+
 BENCHMARK(BM_TreeWidthUpdate)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_PinholePointUpdate)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_FrameWithWidth)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_FrameWithoutWidth)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_FrameSplitWithWidth)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_FrameSplitWithoutWidth)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

@@ -18,10 +18,7 @@
 //                    `nees_every` frames, in the filter's own frame: it starts at the true
 //                    first pose, so no alignment is needed (or allowed) for consistency.
 
-#include <algorithm>
 #include <array>
-#include <chrono>
-#include <cmath>
 #include <limits>
 #include <string>
 #include <utility>
@@ -64,119 +61,22 @@ struct RunTrace {
 /// Trees still in inverse depth or IDR are left out: their depth is not yet observable (that
 /// is why they have not been converted), so the point at 1 / rho is not an estimate of where
 /// they are.
-inline std::vector<std::pair<Id, Vec<3>>> euclideanLandmarks(const MonocularTreeSlam::Filter& ekf) {
-  std::vector<std::pair<Id, Vec<3>>> out;
-  for (const auto& s : ekf.slots()) {
-    if (ekf.holds<sylva::Point3>(s.id))
-      out.emplace_back(s.id, ekf.landmarkMean<sylva::Point3>(s.id));
-    else if (ekf.holds<sylva::TreeXYZR>(s.id))
-      out.emplace_back(s.id, ekf.landmarkMean<sylva::TreeXYZR>(s.id).head<3>());
-  }
-  return out;
-}
+std::vector<std::pair<Id, Vec<3>>> euclideanLandmarks(const MonocularTreeSlam::Filter& ekf);
 
 /// Aligns estimated landmark positions to the true trees; returns the transform and e_l.
-inline std::pair<sylva::eval::Similarity3, double> alignMap(
+std::pair<sylva::eval::Similarity3, double> alignMap(
     const std::vector<std::pair<Id, Vec<3>>>& estimated,
-    const sylva::sim::ForestScenario& scenario) {
-  std::vector<Vec<3>> est, truth;
-  for (const auto& [id, p] : estimated) {
-    est.push_back(p);
-    truth.push_back(scenario.tree(id).base);
-  }
-  const sylva::eval::Similarity3 T = sylva::eval::alignSimilarity(est, truth);
-  return {T, sylva::eval::meanSquaredError(T, est, truth)};
-}
+    const sylva::sim::ForestScenario& scenario);
 
 /// The camera pose NEES (sylva::cameraPoseNees), or infinity where the filter's pose
 /// covariance is not positive definite.
-inline double cameraPoseNees(const Vec<13>& estimate, const Mat<13, 13>& P, const Vec<13>& truth) {
-  try {
-    return sylva::cameraPoseNees(estimate, P, truth);
-  } catch (const sylva::Error&) {
-    return std::numeric_limits<double>::infinity();
-  }
-}
+double cameraPoseNees(const Vec<13>& estimate, const Mat<13, 13>& P, const Vec<13>& truth);
 
 /// One run of `options` over `scenario` (at most `max_frames` frames, 0: all).
-inline RunResult runForestSlam(const sylva::sim::ForestScenario& scenario,
-                               const TreeSlamOptions& options,
-                               int max_frames = 0,
-                               int nees_every = 10,
-                               RunTrace* trace = nullptr) {
-  RunResult result;
-  const auto& frames = scenario.frames;
-  const int n_frames = std::min<int>(static_cast<int>(frames.size()),
-                                     max_frames > 0 ? max_frames : static_cast<int>(frames.size()));
-  MonocularTreeSlam slam(options, frames.front().state, initialCameraCovariance());
-
-  std::vector<Vec<3>> estimated_path;
-  estimated_path.reserve(static_cast<std::size_t>(n_frames));
-  std::vector<std::pair<Id, Vec<3>>> end_of_lap1;
-  const int last_lap = frames[n_frames - 1].lap;
-  const auto start = std::chrono::steady_clock::now();
-  for (int k = 0; k < n_frames; ++k) {
-    const double dt = k == 0 ? 0.0 : frames[k].t_s - frames[k - 1].t_s;
-    const FrameReport report = slam.processFrame(dt, scenario.observations[k]);
-    result.rejected += report.rejected;
-    result.hypotheses += report.hypotheses;
-    estimated_path.push_back(slam.filter().robotMean().head<3>());
-    if (nees_every > 0 && k % nees_every == 0)
-      result.pose_nees.push_back(cameraPoseNees(
-          slam.filter().robotMean(), slam.filter().robotCovariance(), frames[k].state));
-    const bool lap1_ends = frames[k].lap == 0 && (k + 1 == n_frames || frames[k + 1].lap > 0);
-    if (lap1_ends) end_of_lap1 = euclideanLandmarks(slam.filter());
-  }
-  result.runtime_s =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  const auto& ekf = slam.filter();
-  result.by_type = slam.countByType();
-
-  sylva::eval::Similarity3 final_alignment;
-  bool aligned = false;
-  try {
-    result.landmark_error = alignMap(end_of_lap1, scenario).second;
-    final_alignment = alignMap(euclideanLandmarks(ekf), scenario).first;
-    aligned = true;
-    std::vector<Vec<3>> est, truth;
-    for (int k = 0; k < n_frames; ++k) {
-      if (frames[k].lap != last_lap) continue;
-      est.push_back(estimated_path[k]);
-      truth.push_back(frames[k].state.head<3>());
-    }
-    result.trajectory_error = sylva::eval::meanSquaredError(final_alignment, est, truth);
-  } catch (const sylva::Error& e) {
-    result.failure = e.what();
-  }
-  result.converged =
-      sylva::eval::ConvergenceCriteria{}.converged(result.landmark_error, result.trajectory_error);
-
-  double sum_sq = 0.0, sum_true = 0.0;
-  for (const auto& s : ekf.slots()) {
-    if (!ekf.holds<sylva::TreeXYZR>(s.id)) continue;
-    const double r_est =
-        ekf.landmarkMean<sylva::TreeXYZR>(s.id)[3] * (aligned ? final_alignment.scale : 1.0);
-    const double r_true = scenario.tree(s.id).radius_m;
-    sum_sq += (r_est - r_true) * (r_est - r_true);
-    sum_true += r_true;
-    ++result.xyzr_trees;
-  }
-  if (result.xyzr_trees > 0) {
-    result.radius_rmse_m = std::sqrt(sum_sq / result.xyzr_trees);
-    result.mean_true_radius_m = sum_true / result.xyzr_trees;
-  }
-  if (trace != nullptr) {
-    trace->estimated_path = std::move(estimated_path);
-    trace->aligned = aligned;
-    trace->final_alignment = final_alignment;
-    trace->final_landmarks.clear();
-    for (const auto& [id, p] : euclideanLandmarks(ekf))
-      trace->final_landmarks.emplace_back(p,
-                                          ekf.holds<sylva::TreeXYZR>(id)
-                                              ? ekf.landmarkMean<sylva::TreeXYZR>(id)[3]
-                                              : std::numeric_limits<double>::quiet_NaN());
-  }
-  return result;
-}
+RunResult runForestSlam(const sylva::sim::ForestScenario& scenario,
+                        const TreeSlamOptions& options,
+                        int max_frames = 0,
+                        int nees_every = 10,
+                        RunTrace* trace = nullptr);
 
 }  // namespace forest_slam

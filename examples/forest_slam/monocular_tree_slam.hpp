@@ -36,7 +36,10 @@
 // thesis (eq. 3.7); it differs slightly from the projection of the base centre, a small
 // model error shared by the runs with and without the width sensor.
 //
-// Used by examples/forest_slam/main.cpp and bench/forest_slam.cpp.
+// Used by examples/forest_slam, examples/tree_width_study and bench/forest_slam.cpp. The
+// member functions are compiled once, in monocular_tree_slam.cpp (library
+// forest_slam_pipeline): instantiating this filter with its four models is the slowest part
+// of the project's build.
 
 #include <algorithm>
 #include <array>
@@ -62,6 +65,7 @@
 #include <sylva/measurements/tree_width.hpp>
 #include <sylva/motion/constant_velocity_3d.hpp>
 #include <sylva/noise/gaussian.hpp>
+#include <sylva/sim/tree_observer.hpp>
 
 namespace forest_slam {
 
@@ -124,6 +128,22 @@ struct FrameReport {
   int hypotheses = 0; ///< 1 when the frame was re-anchored on a one-point hypothesis
 };
 
+/// Where the frames' time went, when profiling is on (`MonocularTreeSlam::setProfile`):
+/// seconds per phase, summed over the frames processed since.
+struct FrameProfile {
+  double predict_s = 0.0;        ///< camera prediction
+  double gating_s = 0.0;         ///< NIS of every observation and the one-point hypotheses
+                                 ///< (with the filter copies they need)
+  double point_updates_s = 0.0;  ///< PinholePoint updates of inverse-depth and XYZ trees
+  double width_updates_s = 0.0;  ///< TreeWidth and InverseDepthTreeWidth updates
+  double reparametrize_s = 0.0;  ///< life cycle: inverse depth -> XYZ, XYZ (or IDR) -> XYZ-R
+  double add_s = 0.0;            ///< trees seen for the first time
+  int frames = 0;
+  double total_s() const {
+    return predict_s + gating_s + point_updates_s + width_updates_s + reparametrize_s + add_s;
+  }
+};
+
 class MonocularTreeSlam {
  public:
   using Filter = sylva::Ekf<sylva::ConstantVelocity3D, sylva::InverseDepth, sylva::Point3, sylva::TreeXYZR,
@@ -131,79 +151,20 @@ class MonocularTreeSlam {
   using IdPoint = sylva::PinholePoint<sylva::InverseDepth>;
   using XyzPoint = sylva::PinholePoint<sylva::Point3>;
 
-  MonocularTreeSlam(const TreeSlamOptions& options, const Vec<13>& x0, const Mat<13, 13>& P0)
-      : options_(options),
-        ekf_(x0, P0),
-        id_point_(options.camera),
-        xyz_point_(options.camera),
-        tree_width_(options.camera),
-        idr_width_(options.camera),
-        init_(options.camera, options.initial_inverse_depth, options.inverse_depth_sigma),
-        idr_init_(options.camera, options.initial_inverse_depth, options.inverse_depth_sigma),
-        life_(options.camera,
-              sylva::LinearityIndexBelow{options.linearity_threshold},
-              sylva::PositionSigmaBelow{options.tree_position_sigma_m}),
-        accel_noise_(sylva::Gaussian<6>::sigmas(
-            (Vec<6>() << Vec<3>::Constant(options.linear_accel_sigma), Vec<3>::Constant(options.angular_accel_sigma))
-                .finished())),
-        pixel_noise_(sylva::Gaussian<2>::sigmas(Vec<2>::Constant(options.pixel_sigma_px))),
-        tree_noise_(sylva::Gaussian<3>::sigmas(Vec<3>(options.pixel_sigma_px, options.pixel_sigma_px, options.width_sigma_px))) {
-    gate_.fill(std::numeric_limits<double>::infinity());
-    if (options.gate_probability > 0.0)
-      for (int dim = 1; dim <= 3; ++dim) gate_[dim] = sylva::chiSquareGate(dim, options.gate_probability);
-  }
+  MonocularTreeSlam(const TreeSlamOptions& options, const Vec<13>& x0, const Mat<13, 13>& P0);
 
   const Filter& filter() const { return ekf_; }
   const TreeSlamOptions& options() const { return options_; }
 
-  /// One frame: `observations` is a range of objects with `id` and `z` ([u, v, w] pixels).
-  template <typename Observations>
-  FrameReport processFrame(double dt, const Observations& observations) {
-    FrameReport report;
-    ekf_.predict(Vec<0>(), dt, accel_noise_);
-
-    fresh_.clear();
-    mapped_.clear();
-    for (const auto& o : observations) {
-      const Vec<3> z = o.z;
-      (ekf_.contains(o.id) ? mapped_ : fresh_).push_back({o.id, z});
-    }
-    fuseMapped(report);
-
-    report.to_xyz = static_cast<int>(life_.convertInverseDepth(ekf_).size());
-    if (options_.pipeline == WidthPipeline::kFromFirstSight)
-      report.to_tree += static_cast<int>(life_.convertInverseDepthRadius(ekf_).size());
-    if (options_.pipeline == WidthPipeline::kAfterXyz) {
-      for (const Seen& s : mapped_) {
-        if (!ekf_.template holds<sylva::Point3>(s.id)) continue;
-        try {
-          if (life_.convertToTree(ekf_, s.id, s.z, tree_noise_)) ++report.to_tree;
-        } catch (const sylva::Error&) {
-          ++report.rejected;
-        }
-      }
-    }
-
-    for (const Seen& s : fresh_) {
-      try {
-        if (options_.pipeline == WidthPipeline::kFromFirstSight)
-          ekf_.add(s.id, idr_init_, idr_init_.measurement(s.z), idr_init_.noise(tree_noise_));
-        else
-          ekf_.add(s.id, init_, init_.measurement(s.z.head<2>()), init_.noise(pixel_noise_));
-        ++report.added;
-      } catch (const sylva::Error&) {
-        ++report.rejected;
-      }
-    }
-    return report;
-  }
+  /// One frame: predict over `dt` seconds, then the trees seen ([u, v, w] pixels each).
+  FrameReport processFrame(double dt, const std::vector<sylva::sim::TreeObservation>& observations);
 
   /// Number of landmarks per parametrization: [inverse depth, XYZ, XYZ-R, IDR].
-  std::array<int, 4> countByType() const {
-    std::array<int, 4> n{0, 0, 0, 0};
-    for (const auto& s : ekf_.slots()) ++n[static_cast<std::size_t>(s.type_index)];
-    return n;
-  }
+  std::array<int, 4> countByType() const;
+
+  /// Adds the time of every following frame's phases to `*profile` (nullptr: off, the
+  /// default). The profile is the caller's; a copy of this object shares it.
+  void setProfile(FrameProfile* profile) { profile_ = profile; }
 
  private:
   struct Seen {
@@ -221,149 +182,20 @@ class MonocularTreeSlam {
   /// NIS of observation `s` against `ekf`'s current estimate through the model of the
   /// landmark's parametrization (XYZ-R trees only with the width sensor); +inf when the model
   /// cannot predict it (e.g. behind the estimated camera).
-  double nisOf(const Filter& ekf, const Seen& s) const {
-    try {
-      if (ekf.template holds<sylva::InverseDepth>(s.id))
-        return ekf.innovation(id_point_, s.id, Vec<2>(s.z.head<2>()), pixel_noise_).nis();
-      if (ekf.template holds<sylva::Point3>(s.id))
-        return ekf.innovation(xyz_point_, s.id, Vec<2>(s.z.head<2>()), pixel_noise_).nis();
-      if (ekf.template holds<sylva::InverseDepthRadius>(s.id))
-        return ekf.innovation(idr_width_, s.id, s.z, tree_noise_).nis();
-      return ekf.innovation(tree_width_, s.id, s.z, tree_noise_).nis();
-    } catch (const sylva::Error&) {
-      return kUnpredictable;
-    }
-  }
-
-  /// True when the observation passes the chi-square gate (always, for a predictable one, with
-  /// the gate off).
-  bool passes(const Filter& ekf, const Seen& s) const { return withinGate(ekf, s.id, nisOf(ekf, s)); }
-
-  bool withinGate(const Filter& ekf, Id id, double nis) const {
-    if (!(nis < kUnpredictable)) return false;
-    const bool with_width = ekf.template holds<sylva::TreeXYZR>(id) || ekf.template holds<sylva::InverseDepthRadius>(id);
-    return nis < gate_[with_width ? 3 : 2];
-  }
-
+  double nisOf(const Filter& ekf, const Seen& s) const;
+  /// True when the observation passes the chi-square gate (always, for a predictable one,
+  /// with the gate off).
+  bool passes(const Filter& ekf, const Seen& s) const;
+  bool withinGate(const Filter& ekf, Id id, double nis) const;
   /// Fuses observation `s` alone into `ekf` (throws like Ekf::update).
-  void fuseOne(Filter& ekf, const Seen& s) const {
-    if (ekf.template holds<sylva::InverseDepth>(s.id))
-      ekf.update(id_point_, s.id, Vec<2>(s.z.head<2>()), pixel_noise_);
-    else if (ekf.template holds<sylva::Point3>(s.id))
-      ekf.update(xyz_point_, s.id, Vec<2>(s.z.head<2>()), pixel_noise_);
-    else if (ekf.template holds<sylva::InverseDepthRadius>(s.id))
-      ekf.update(idr_width_, s.id, s.z, tree_noise_);
-    else
-      ekf.update(tree_width_, s.id, s.z, tree_noise_);
-  }
-
-  /// Fuses the observations of mapped trees. Each is gated on its NIS at the predicted
-  /// state. When fewer than half of the predictable ones pass, the prediction itself is
-  /// suspect (a turn the motion model did not expect), not the measurements: one-point
-  /// hypotheses as in Civera et al. 2010 ("1-point RANSAC for EKF filtering") try the best
-  /// few observations alone on a copy of the filter and keep the one under which most of the
-  /// others pass the gate, if it explains more of them than the prediction did. The passing
-  /// observations are then fused in one batch per model; those refused get a second chance
-  /// against the updated estimate.
-  void fuseMapped(FrameReport& report) {
-    candidates_.clear();
-    for (const Seen& s : mapped_) {
-      const double nis = nisOf(ekf_, s);
-      if (nis < kUnpredictable) candidates_.push_back({s, nis});
-      else ++report.rejected;
-    }
-    if (candidates_.empty()) return;
-    accepted_.clear();
-    refused_.clear();
-    for (const Candidate& c : candidates_) (withinGate(ekf_, c.seen.id, c.nis) ? accepted_ : refused_).push_back(c.seen);
-
-    const bool gated = options_.gate_probability > 0.0;
-    if (gated && candidates_.size() >= 2 && 2 * accepted_.size() < candidates_.size()) {
-      std::sort(candidates_.begin(), candidates_.end(),
-                [](const Candidate& a, const Candidate& b) { return a.nis < b.nis; });
-      int best = -1;
-      std::size_t best_support = accepted_.size();
-      const int tries = std::min<int>(kMaxHypotheses, static_cast<int>(candidates_.size()));
-      for (int h = 0; h < tries; ++h) {
-        Filter trial = ekf_;
-        try {
-          fuseOne(trial, candidates_[h].seen);
-        } catch (const sylva::Error&) {
-          continue;
-        }
-        std::size_t support = 0;
-        for (int j = 0; j < static_cast<int>(candidates_.size()); ++j)
-          if (j != h && passes(trial, candidates_[j].seen)) ++support;
-        if (support > best_support) {
-          best_support = support;
-          best = h;
-        }
-      }
-      if (best >= 0) {
-        const Seen chosen = candidates_[best].seen;
-        fuseOne(ekf_, chosen);  // succeeded on the copy, so it succeeds here
-        ++report.fused;
-        ++report.hypotheses;
-        accepted_.clear();
-        refused_.clear();
-        for (const Candidate& c : candidates_) {
-          if (c.seen.id == chosen.id) continue;
-          (passes(ekf_, c.seen) ? accepted_ : refused_).push_back(c.seen);
-        }
-      }
-    }
-
-    fuseBatches(accepted_, report);
-    if (refused_.empty()) return;
-    second_chance_.clear();
-    for (const Seen& s : refused_) {
-      if (passes(ekf_, s)) second_chance_.push_back(s);
-      else ++report.rejected;
-    }
-    fuseBatches(second_chance_, report);
-  }
-
+  void fuseOne(Filter& ekf, const Seen& s) const;
+  /// Gates and fuses the observations of mapped trees (step 2 at the top of this file).
+  void fuseMapped(FrameReport& report);
   /// Fuses `observations` in one batched update per model.
-  void fuseBatches(const std::vector<Seen>& observations, FrameReport& report) {
-    id_batch_.clear();
-    xyz_batch_.clear();
-    tree_batch_.clear();
-    idr_batch_.clear();
-    for (const Seen& s : observations) {
-      if (ekf_.template holds<sylva::InverseDepth>(s.id))
-        id_batch_.push_back({s.id, s.z.head<2>(), pixel_noise_});
-      else if (ekf_.template holds<sylva::Point3>(s.id))
-        xyz_batch_.push_back({s.id, s.z.head<2>(), pixel_noise_});
-      else if (ekf_.template holds<sylva::InverseDepthRadius>(s.id))
-        idr_batch_.push_back({s.id, s.z, tree_noise_});
-      else
-        tree_batch_.push_back({s.id, s.z, tree_noise_});
-    }
-    fuse(id_point_, id_batch_, report);
-    fuse(xyz_point_, xyz_batch_, report);
-    fuse(tree_width_, tree_batch_, report);
-    fuse(idr_width_, idr_batch_, report);
-  }
-
+  void fuseBatches(const std::vector<Seen>& observations, FrameReport& report);
+  /// One batched update through `model`; one observation at a time if the batch is refused.
   template <typename Model>
-  void fuse(const Model& model, const std::vector<sylva::Observation<Model>>& batch, FrameReport& report) {
-    if (batch.empty()) return;
-    try {
-      ekf_.update(model, batch);
-      report.fused += static_cast<int>(batch.size());
-      return;
-    } catch (const sylva::Error&) {
-      // The filter is unchanged; fall back to one observation at a time.
-    }
-    for (const auto& o : batch) {
-      try {
-        ekf_.update(model, o.id, o.z, o.noise);
-        ++report.fused;
-      } catch (const sylva::Error&) {
-        ++report.rejected;
-      }
-    }
-  }
+  void fuse(const Model& model, const std::vector<sylva::Observation<Model>>& batch, FrameReport& report);
 
   TreeSlamOptions options_;
   Filter ekf_;
@@ -384,6 +216,7 @@ class MonocularTreeSlam {
   std::array<double, 4> gate_;  ///< chi-square gate by measurement dimension (2 and 3 used)
   std::vector<Seen> fresh_, mapped_, accepted_, refused_, second_chance_;
   std::vector<Candidate> candidates_;
+  FrameProfile* profile_ = nullptr;
 };
 
 }  // namespace forest_slam

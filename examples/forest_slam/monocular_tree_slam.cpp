@@ -1,0 +1,252 @@
+// The member functions of MonocularTreeSlam (see monocular_tree_slam.hpp), compiled once for
+// forest_slam, tree_width_study and bench_forest_slam.
+
+#include "monocular_tree_slam.hpp"
+
+#include <chrono>
+#include <optional>
+
+namespace forest_slam {
+
+namespace {
+
+/// Adds the seconds between construction and destruction to `*sink` (nothing when null).
+class PhaseClock {
+ public:
+  explicit PhaseClock(double* sink) : sink_(sink) {
+    if (sink_ != nullptr) start_ = std::chrono::steady_clock::now();
+  }
+  ~PhaseClock() {
+    if (sink_ != nullptr) *sink_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  }
+  PhaseClock(const PhaseClock&) = delete;
+  PhaseClock& operator=(const PhaseClock&) = delete;
+
+ private:
+  double* sink_;
+  std::chrono::steady_clock::time_point start_;
+};
+
+}  // namespace
+
+MonocularTreeSlam::MonocularTreeSlam(const TreeSlamOptions& options, const Vec<13>& x0, const Mat<13, 13>& P0)
+    : options_(options),
+      ekf_(x0, P0),
+      id_point_(options.camera),
+      xyz_point_(options.camera),
+      tree_width_(options.camera),
+      idr_width_(options.camera),
+      init_(options.camera, options.initial_inverse_depth, options.inverse_depth_sigma),
+      idr_init_(options.camera, options.initial_inverse_depth, options.inverse_depth_sigma),
+      life_(options.camera,
+            sylva::LinearityIndexBelow{options.linearity_threshold},
+            sylva::PositionSigmaBelow{options.tree_position_sigma_m}),
+      accel_noise_(sylva::Gaussian<6>::sigmas(
+          (Vec<6>() << Vec<3>::Constant(options.linear_accel_sigma), Vec<3>::Constant(options.angular_accel_sigma))
+              .finished())),
+      pixel_noise_(sylva::Gaussian<2>::sigmas(Vec<2>::Constant(options.pixel_sigma_px))),
+      tree_noise_(sylva::Gaussian<3>::sigmas(Vec<3>(options.pixel_sigma_px, options.pixel_sigma_px, options.width_sigma_px))) {
+  gate_.fill(std::numeric_limits<double>::infinity());
+  if (options.gate_probability > 0.0)
+    for (int dim = 1; dim <= 3; ++dim) gate_[dim] = sylva::chiSquareGate(dim, options.gate_probability);
+}
+
+FrameReport MonocularTreeSlam::processFrame(double dt, const std::vector<sylva::sim::TreeObservation>& observations) {
+  FrameReport report;
+  if (profile_ != nullptr) ++profile_->frames;
+  {
+    PhaseClock clock(profile_ != nullptr ? &profile_->predict_s : nullptr);
+    ekf_.predict(Vec<0>(), dt, accel_noise_);
+  }
+
+  fresh_.clear();
+  mapped_.clear();
+  for (const auto& o : observations) {
+    const Vec<3> z = o.z;
+    (ekf_.contains(o.id) ? mapped_ : fresh_).push_back({o.id, z});
+  }
+  {
+    // Gating is what fuseMapped spends beyond the updates, which fuse() books themselves.
+    const double updates_before =
+        profile_ != nullptr ? profile_->point_updates_s + profile_->width_updates_s : 0.0;
+    const auto start = std::chrono::steady_clock::now();
+    fuseMapped(report);
+    if (profile_ != nullptr)
+      profile_->gating_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() -
+                            (profile_->point_updates_s + profile_->width_updates_s - updates_before);
+  }
+
+  std::optional<PhaseClock> reparametrize_clock;
+  if (profile_ != nullptr) reparametrize_clock.emplace(&profile_->reparametrize_s);
+  report.to_xyz = static_cast<int>(life_.convertInverseDepth(ekf_).size());
+  if (options_.pipeline == WidthPipeline::kFromFirstSight)
+    report.to_tree += static_cast<int>(life_.convertInverseDepthRadius(ekf_).size());
+  if (options_.pipeline == WidthPipeline::kAfterXyz) {
+    for (const Seen& s : mapped_) {
+      if (!ekf_.template holds<sylva::Point3>(s.id)) continue;
+      try {
+        if (life_.convertToTree(ekf_, s.id, s.z, tree_noise_)) ++report.to_tree;
+      } catch (const sylva::Error&) {
+        ++report.rejected;
+      }
+    }
+  }
+
+  reparametrize_clock.reset();
+
+  PhaseClock add_clock(profile_ != nullptr ? &profile_->add_s : nullptr);
+  for (const Seen& s : fresh_) {
+    try {
+      if (options_.pipeline == WidthPipeline::kFromFirstSight)
+        ekf_.add(s.id, idr_init_, idr_init_.measurement(s.z), idr_init_.noise(tree_noise_));
+      else
+        ekf_.add(s.id, init_, init_.measurement(s.z.head<2>()), init_.noise(pixel_noise_));
+      ++report.added;
+    } catch (const sylva::Error&) {
+      ++report.rejected;
+    }
+  }
+  return report;
+}
+
+std::array<int, 4> MonocularTreeSlam::countByType() const {
+  std::array<int, 4> n{0, 0, 0, 0};
+  for (const auto& s : ekf_.slots()) ++n[static_cast<std::size_t>(s.type_index)];
+  return n;
+}
+
+double MonocularTreeSlam::nisOf(const Filter& ekf, const Seen& s) const {
+  try {
+    if (ekf.template holds<sylva::InverseDepth>(s.id))
+      return ekf.innovation(id_point_, s.id, Vec<2>(s.z.head<2>()), pixel_noise_).nis();
+    if (ekf.template holds<sylva::Point3>(s.id))
+      return ekf.innovation(xyz_point_, s.id, Vec<2>(s.z.head<2>()), pixel_noise_).nis();
+    if (ekf.template holds<sylva::InverseDepthRadius>(s.id))
+      return ekf.innovation(idr_width_, s.id, s.z, tree_noise_).nis();
+    return ekf.innovation(tree_width_, s.id, s.z, tree_noise_).nis();
+  } catch (const sylva::Error&) {
+    return kUnpredictable;
+  }
+}
+
+bool MonocularTreeSlam::passes(const Filter& ekf, const Seen& s) const { return withinGate(ekf, s.id, nisOf(ekf, s)); }
+
+bool MonocularTreeSlam::withinGate(const Filter& ekf, Id id, double nis) const {
+  if (!(nis < kUnpredictable)) return false;
+  const bool with_width = ekf.template holds<sylva::TreeXYZR>(id) || ekf.template holds<sylva::InverseDepthRadius>(id);
+  return nis < gate_[with_width ? 3 : 2];
+}
+
+void MonocularTreeSlam::fuseOne(Filter& ekf, const Seen& s) const {
+  if (ekf.template holds<sylva::InverseDepth>(s.id))
+    ekf.update(id_point_, s.id, Vec<2>(s.z.head<2>()), pixel_noise_);
+  else if (ekf.template holds<sylva::Point3>(s.id))
+    ekf.update(xyz_point_, s.id, Vec<2>(s.z.head<2>()), pixel_noise_);
+  else if (ekf.template holds<sylva::InverseDepthRadius>(s.id))
+    ekf.update(idr_width_, s.id, s.z, tree_noise_);
+  else
+    ekf.update(tree_width_, s.id, s.z, tree_noise_);
+}
+
+void MonocularTreeSlam::fuseMapped(FrameReport& report) {
+  candidates_.clear();
+  for (const Seen& s : mapped_) {
+    const double nis = nisOf(ekf_, s);
+    if (nis < kUnpredictable) candidates_.push_back({s, nis});
+    else ++report.rejected;
+  }
+  if (candidates_.empty()) return;
+  accepted_.clear();
+  refused_.clear();
+  for (const Candidate& c : candidates_) (withinGate(ekf_, c.seen.id, c.nis) ? accepted_ : refused_).push_back(c.seen);
+
+  const bool gated = options_.gate_probability > 0.0;
+  if (gated && candidates_.size() >= 2 && 2 * accepted_.size() < candidates_.size()) {
+    std::sort(candidates_.begin(), candidates_.end(),
+              [](const Candidate& a, const Candidate& b) { return a.nis < b.nis; });
+    int best = -1;
+    std::size_t best_support = accepted_.size();
+    const int tries = std::min<int>(kMaxHypotheses, static_cast<int>(candidates_.size()));
+    for (int h = 0; h < tries; ++h) {
+      Filter trial = ekf_;
+      try {
+        fuseOne(trial, candidates_[h].seen);
+      } catch (const sylva::Error&) {
+        continue;
+      }
+      std::size_t support = 0;
+      for (int j = 0; j < static_cast<int>(candidates_.size()); ++j)
+        if (j != h && passes(trial, candidates_[j].seen)) ++support;
+      if (support > best_support) {
+        best_support = support;
+        best = h;
+      }
+    }
+    if (best >= 0) {
+      const Seen chosen = candidates_[best].seen;
+      fuseOne(ekf_, chosen);  // succeeded on the copy, so it succeeds here
+      ++report.fused;
+      ++report.hypotheses;
+      accepted_.clear();
+      refused_.clear();
+      for (const Candidate& c : candidates_) {
+        if (c.seen.id == chosen.id) continue;
+        (passes(ekf_, c.seen) ? accepted_ : refused_).push_back(c.seen);
+      }
+    }
+  }
+
+  fuseBatches(accepted_, report);
+  if (refused_.empty()) return;
+  second_chance_.clear();
+  for (const Seen& s : refused_) {
+    if (passes(ekf_, s)) second_chance_.push_back(s);
+    else ++report.rejected;
+  }
+  fuseBatches(second_chance_, report);
+}
+
+void MonocularTreeSlam::fuseBatches(const std::vector<Seen>& observations, FrameReport& report) {
+  id_batch_.clear();
+  xyz_batch_.clear();
+  tree_batch_.clear();
+  idr_batch_.clear();
+  for (const Seen& s : observations) {
+    if (ekf_.template holds<sylva::InverseDepth>(s.id))
+      id_batch_.push_back({s.id, s.z.head<2>(), pixel_noise_});
+    else if (ekf_.template holds<sylva::Point3>(s.id))
+      xyz_batch_.push_back({s.id, s.z.head<2>(), pixel_noise_});
+    else if (ekf_.template holds<sylva::InverseDepthRadius>(s.id))
+      idr_batch_.push_back({s.id, s.z, tree_noise_});
+    else
+      tree_batch_.push_back({s.id, s.z, tree_noise_});
+  }
+  fuse(id_point_, id_batch_, report);
+  fuse(xyz_point_, xyz_batch_, report);
+  fuse(tree_width_, tree_batch_, report);
+  fuse(idr_width_, idr_batch_, report);
+}
+
+template <typename Model>
+void MonocularTreeSlam::fuse(const Model& model, const std::vector<sylva::Observation<Model>>& batch, FrameReport& report) {
+  if (batch.empty()) return;
+  PhaseClock clock(profile_ == nullptr ? nullptr
+                                       : Model::kDim == 3 ? &profile_->width_updates_s : &profile_->point_updates_s);
+  try {
+    ekf_.update(model, batch);
+    report.fused += static_cast<int>(batch.size());
+    return;
+  } catch (const sylva::Error&) {
+    // The filter is unchanged; fall back to one observation at a time.
+  }
+  for (const auto& o : batch) {
+    try {
+      ekf_.update(model, o.id, o.z, o.noise);
+      ++report.fused;
+    } catch (const sylva::Error&) {
+      ++report.rejected;
+    }
+  }
+}
+
+}  // namespace forest_slam

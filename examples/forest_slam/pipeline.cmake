@@ -1,0 +1,12 @@
+# forest_slam_pipeline: the monocular tree-SLAM pipeline (MonocularTreeSlam, runForestSlam)
+# compiled once and linked by examples/forest_slam, examples/tree_width_study and
+# bench/forest_slam.cpp. Instantiating the filter with its four models is the slowest part of
+# the project's build; compiled inside each program's main.cpp it cost g++ about 5 minutes
+# per program. Included from examples/forest_slam and bench (whichever comes first defines it).
+if(NOT TARGET forest_slam_pipeline)
+  add_library(forest_slam_pipeline STATIC
+    ${CMAKE_CURRENT_LIST_DIR}/monocular_tree_slam.cpp
+    ${CMAKE_CURRENT_LIST_DIR}/forest_run.cpp)
+  target_include_directories(forest_slam_pipeline PUBLIC ${CMAKE_CURRENT_LIST_DIR})
+  target_link_libraries(forest_slam_pipeline PUBLIC sylva::sylva PRIVATE sylva_warnings)
+endif()
