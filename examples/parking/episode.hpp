@@ -95,7 +95,7 @@ struct EpisodeResult {
   int forward_moves = 0;
   int reverse_moves = 0;
   long frames = 0;
-  double min_station_distance_m = std::numeric_limits<double>::infinity();
+  double min_station_distance_m = 0.0;  ///< closest the robot centre came to the line y = 0
   std::vector<Transition> transitions;
   std::vector<Sample> samples;  ///< filled when asked for
 };
@@ -143,6 +143,7 @@ inline EpisodeResult runEpisode(const StationCamera& camera,
   Pose x = start;
   x[2] = sylva::wrapAngle(x[2]);
   double v = 0.0, omega = 0.0;
+  r.min_station_distance_m = -x[1];
   const long max_frames = static_cast<long>(std::ceil(options.max_time_s / dt));
   bool collided = false;
 

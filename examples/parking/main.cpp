@@ -227,7 +227,8 @@ int runOne(const Options& o, const parking::StationCamera& camera,
   std::cout << "outcome: " << parking::toString(r.outcome) << " after " << fixed(r.time_s, 2)
             << " s; " << r.cycles << " forward-reverse cycle" << (r.cycles == 1 ? "" : "s")
             << " (" << r.forward_moves << " forward, " << r.reverse_moves << " reverse moves)\n"
-            << "final pose error: x " << fixed(100 * r.error[0], 2) << " cm (lateral), y "
+            << "final pose error" << (parked ? "" : " (not parked)") << ": x "
+            << fixed(100 * r.error[0], 2) << " cm (lateral), y "
             << fixed(100 * r.error[1], 2) << " cm (along the axis), heading "
             << fixed(r.error[2] / kDegToRad, 2) << " deg\n"
             << "closest approach to the station: " << fixed(r.min_station_distance_m, 3)
@@ -384,10 +385,10 @@ int main(int argc, char** argv) {
       ->check(pos)
       ->capture_default_str();
   app.add_option("--k1", o.k1_degps_per_px, "Start/Reverse turn gain (deg/s per px)")
-      ->check(ok)
+      ->check(pos)
       ->capture_default_str();
   app.add_option("--k2", o.k2_degps_per_px, "Forward turn gain (deg/s per px)")
-      ->check(ok)
+      ->check(pos)
       ->capture_default_str();
   app.add_option("--c-min", cp.c_min_px, "smallest virtual edge c_min (px)")
       ->check(ok)
@@ -432,7 +433,7 @@ int main(int argc, char** argv) {
       ->check(ok)
       ->capture_default_str();
   app.add_option("--max-omega", o.max_omega_degps, "turn-rate limit (deg/s)")
-      ->check(ok)
+      ->check(pos)
       ->capture_default_str();
   double alpha_degps2 = robot.max_alpha_radps2 / kDegToRad;
   app.add_option("--accel", robot.max_accel_mps2, "robot acceleration limit (m/s^2, 0: none)")
