@@ -399,7 +399,9 @@ int main(int argc, char** argv) {
   app.add_option("--c-gain", cp.c_gain, "k_s k of eq. 5.9 (px of c per px of asymmetry)")
       ->check(ok)
       ->capture_default_str();
-  app.add_flag("--no-adapt", o.no_adapt, "fixed virtual edge --c-static instead of eq. 5.9");
+  app.add_flag("--no-adapt", o.no_adapt,
+               "fixed virtual edge --c-static instead of eq. 5.9 (one attempt; --study always "
+               "runs adaptive, fixed c_max and fixed c_min)");
   app.add_option("--c-static", cp.c_static_px, "the fixed virtual edge with --no-adapt (px)")
       ->check(ok)
       ->capture_default_str();

@@ -100,7 +100,7 @@ TEST_CASE("parking episode: a start without the whole station in view ends at on
   CHECK(r.samples.back().v_cmd == 0.0);
 }
 
-TEST_CASE("parking episode: the station leaving the image mid-run ends as lost; the width test "
+TEST_CASE("parking episode: the station leaving the image mid-run ends as lost, and the width test "
           "of the forward move prevents it",
           "[parking]") {
   // 36 deg off the axis, 0.9 m away, no noise: with the thesis' forward exit alone the turn
