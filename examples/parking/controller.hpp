@@ -90,38 +90,50 @@ enum class Event { kNone, kEps1, kEps2, kEps3, kEps4, kEps5, kStationLost };
 
 inline const char* toString(State s) {
   switch (s) {
-    case State::kStart: return "Start";
-    case State::kForward: return "Forward";
-    case State::kReverse: return "Reverse";
-    case State::kStop: return "Stop";
-    case State::kLost: return "Lost";
+    case State::kStart:
+      return "Start";
+    case State::kForward:
+      return "Forward";
+    case State::kReverse:
+      return "Reverse";
+    case State::kStop:
+      return "Stop";
+    case State::kLost:
+      return "Lost";
   }
   return "?";
 }
 
 inline const char* toString(Event e) {
   switch (e) {
-    case Event::kNone: return "none";
-    case Event::kEps1: return "eps1";
-    case Event::kEps2: return "eps2";
-    case Event::kEps3: return "eps3";
-    case Event::kEps4: return "eps4";
-    case Event::kEps5: return "eps5";
-    case Event::kStationLost: return "lost";
+    case Event::kNone:
+      return "none";
+    case Event::kEps1:
+      return "eps1";
+    case Event::kEps2:
+      return "eps2";
+    case Event::kEps3:
+      return "eps3";
+    case Event::kEps4:
+      return "eps4";
+    case Event::kEps5:
+      return "eps5";
+    case Event::kStationLost:
+      return "lost";
   }
   return "?";
 }
 
 /// The tunable parameters (Table 5.1); defaults from Table 5.2 where it gives them.
 struct ControllerParams {
-  double image_width_px = 1392.0;                        ///< W (Basler A102fc: 1392 x 1040)
+  double image_width_px = 1392.0;                           ///< W (Basler A102fc: 1392 x 1040)
   std::array<double, 3> reference_px{478.0, 695.0, 910.0};  ///< [u1^r, u2^r, u3^r]
   double k1_radps_per_px = 0.25 * kDegToRad;  ///< start/reverse turn gain (Table 5.2: 0.25)
   double k2_radps_per_px = 0.10 * kDegToRad;  ///< forward turn gain (Table 5.2: 0.1)
   double c_min_px = 255.0;                    ///< Table 5.2
   double c_max_px = 470.0;                    ///< Fig. 5.15 (allowed maximum 478)
   bool adapt_c = true;                        ///< eq. 5.9; false: c = c_static_px always
-  double c_gain = 12.0;        ///< k_c = k_s k of eq. 5.9 (px of c per px of asymmetry)
+  double c_gain = 12.0;  ///< k_c = k_s k of eq. 5.9 (px of c per px of asymmetry)
   /// true: the asymmetry that picks the side and sets c is f1 - f2 scaled to the reference
   /// size and taken relative to the reference's own f1^r - f2^r (see the file comment);
   /// false: the raw f1 - f2 of Algorithms 5-6 and eq. 5.9.
@@ -130,7 +142,7 @@ struct ControllerParams {
   /// A >= W - 2c (the same moment as the thesis' test while the held feature sits on its
   /// virtual edge, earlier when the turn lags behind and the held feature slips past it).
   bool exit_on_width = true;
-  double c_static_px = 470.0;  ///< the virtual edge when adapt_c is false
+  double c_static_px = 470.0;        ///< the virtual edge when adapt_c is false
   double v_forward_mps = 0.14;       ///< v_c (Table 5.2: 140 mm/s)
   double v_reverse_mps = 0.10;       ///< v_r (Table 5.2: 100 mm/s)
   double v_reverse_slow_mps = 0.02;  ///< reverse speed near the goal (Sec. 5.5.3; value ours)
@@ -138,19 +150,17 @@ struct ControllerParams {
   double slow_band_f12_px = 8.0;     ///< ... and |asymmetry| < this (threshold ours)
   double delta_u_px = 1.5;           ///< Table 5.2
   double delta_A_px = 1.5;           ///< Table 5.2
-  int parked_frames = 1;  ///< consecutive frames on which eq. 5.1 must hold (thesis: 1)
+  int parked_frames = 1;             ///< consecutive frames on which eq. 5.1 must hold (thesis: 1)
   /// Frames over which Start measures f1, f2 and E_A once P2 is aligned (its "termination
   /// measurement", Sec. 5.3.1); the mean sets c and the next state. Thesis: 1 frame.
   int start_exit_frames = 5;
-  double A_min_px = 260.0;           ///< reverse until A < A_min (not in Table 5.2; ours)
-  double max_omega_radps = 1.0;      ///< turn-rate limit (not in the thesis)
-  double min_feature_gap_px = 1.0;   ///< closer blobs are one feature seen twice
+  double A_min_px = 260.0;          ///< reverse until A < A_min (not in Table 5.2; ours)
+  double max_omega_radps = 1.0;     ///< turn-rate limit (not in the thesis)
+  double min_feature_gap_px = 1.0;  ///< closer blobs are one feature seen twice
 
   double referenceWidth() const { return reference_px[2] - reference_px[0]; }
   /// The largest c for which a forward move ends with the station larger than the reference.
-  double cAllowedMax() const {
-    return std::min(reference_px[0], image_width_px - reference_px[2]);
-  }
+  double cAllowedMax() const { return std::min(reference_px[0], image_width_px - reference_px[2]); }
 
   /// Throws sylva::Error naming the first parameter that makes no sense.
   void validate() const {
@@ -206,8 +216,8 @@ struct ControllerParams {
     positive("c_static_px", c_static_px);
     {
       std::ostringstream os;
-      os << "c_static_px (" << c_static_px << ") must be below min(u1^r, W - u3^r) = "
-         << cAllowedMax();
+      os << "c_static_px (" << c_static_px
+         << ") must be below min(u1^r, W - u3^r) = " << cAllowedMax();
       require(c_static_px < cAllowedMax(), os.str());
     }
     positive("v_forward_mps", v_forward_mps);
@@ -238,8 +248,9 @@ struct ControllerParams {
     positive("A_min_px", A_min_px);
     {
       std::ostringstream os;
-      os << "A_min_px (" << A_min_px << ") must be below the reference width A^r = "
-         << referenceWidth() << " less delta_A, or the reverse move ends before it can park";
+      os << "A_min_px (" << A_min_px
+         << ") must be below the reference width A^r = " << referenceWidth()
+         << " less delta_A, or the reverse move ends before it can park";
       require(A_min_px < referenceWidth() - delta_A_px, os.str());
     }
     positive("max_omega_radps", max_omega_radps);
@@ -258,8 +269,8 @@ struct StationImage {
 
 /// What the controller asks of the robot for the coming frame interval.
 struct Command {
-  double v_mps = 0.0;        ///< forward speed (negative: reversing)
-  double omega_radps = 0.0;  ///< turn rate, counter-clockwise positive
+  double v_mps = 0.0;           ///< forward speed (negative: reversing)
+  double omega_radps = 0.0;     ///< turn rate, counter-clockwise positive
   State state = State::kStart;  ///< the state after this frame
   Event event = Event::kNone;   ///< the event this frame raised, if any
 };
@@ -311,8 +322,7 @@ class HybridController {
     const int streak = state_ == State::kReverse && parked(image) ? parked_streak_ + 1 : 0;
     StartMeasurement measurement = start_measurement_;
     if (state_ == State::kStart &&
-        (measurement.frames > 0 ||
-         std::abs(image.u[1] - p_.reference_px[1]) <= p_.delta_u_px)) {
+        (measurement.frames > 0 || std::abs(image.u[1] - p_.reference_px[1]) <= p_.delta_u_px)) {
       ++measurement.frames;
       measurement.asymmetry_sum += asymmetry(image);
       measurement.E_A_sum += image.width() - p_.referenceWidth();
@@ -345,8 +355,8 @@ class HybridController {
     // Below A_min (farther than a reverse move goes) the scale stops growing: the factor
     // would amplify the pixel noise of a tiny station.
     const double scale = p_.referenceWidth() / std::max(image.width(), p_.A_min_px);
-    const double reference = (p_.reference_px[1] - p_.reference_px[0]) -
-                             (p_.reference_px[2] - p_.reference_px[1]);
+    const double reference =
+        (p_.reference_px[1] - p_.reference_px[0]) - (p_.reference_px[2] - p_.reference_px[1]);
     return raw * scale * scale - reference;
   }
 
@@ -410,9 +420,9 @@ class HybridController {
     for (std::size_t i = 1; i < sorted.size(); ++i) {
       if (sorted[i] - sorted[i - 1] < p_.min_feature_gap_px) {
         std::ostringstream os;
-        os << "parking controller: frame " << frame_ << " holds a duplicated feature: u = "
-           << sorted[i - 1] << " and " << sorted[i] << " px are closer than "
-           << p_.min_feature_gap_px << " px";
+        os << "parking controller: frame " << frame_
+           << " holds a duplicated feature: u = " << sorted[i - 1] << " and " << sorted[i]
+           << " px are closer than " << p_.min_feature_gap_px << " px";
         sylva::fail(ErrorCode::kInvalidArgument, os.str());
       }
     }
@@ -445,20 +455,28 @@ class HybridController {
         if (parked_streak >= p_.parked_frames) return Event::kEps3;
         return image.width() < p_.A_min_px ? Event::kEps5 : Event::kNone;
       case State::kStop:
-      case State::kLost: return Event::kNone;
+      case State::kLost:
+        return Event::kNone;
     }
     return Event::kNone;
   }
 
   static State nextState(Event e) {
     switch (e) {
-      case Event::kEps1: return State::kForward;
-      case Event::kEps2: return State::kReverse;
-      case Event::kEps3: return State::kStop;
-      case Event::kEps4: return State::kStart;
-      case Event::kEps5: return State::kForward;
-      case Event::kStationLost: return State::kLost;
-      case Event::kNone: break;
+      case Event::kEps1:
+        return State::kForward;
+      case Event::kEps2:
+        return State::kReverse;
+      case Event::kEps3:
+        return State::kStop;
+      case Event::kEps4:
+        return State::kStart;
+      case Event::kEps5:
+        return State::kForward;
+      case Event::kStationLost:
+        return State::kLost;
+      case Event::kNone:
+        break;
     }
     return State::kStart;
   }
@@ -493,14 +511,15 @@ class HybridController {
         break;
       case State::kReverse: {  // Algorithm 7: straight back, P2 held on its reference.
         const double E_A = image.width() - p_.referenceWidth();
-        const bool near_goal = std::abs(E_A) < p_.slow_band_EA_px &&
-                               std::abs(asymmetry(image)) < p_.slow_band_f12_px;
+        const bool near_goal =
+            std::abs(E_A) < p_.slow_band_EA_px && std::abs(asymmetry(image)) < p_.slow_band_f12_px;
         out.v_mps = -(near_goal ? p_.v_reverse_slow_mps : p_.v_reverse_mps);
         out.omega_radps = limitTurn(-p_.k1_radps_per_px * e2);
         break;
       }
       case State::kStop:
-      case State::kLost: break;
+      case State::kLost:
+        break;
     }
     return out;
   }

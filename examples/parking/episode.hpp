@@ -34,7 +34,7 @@ struct RobotParams {
   double max_accel_mps2 = 0.3;                ///< Pioneer 3-AT default, 300 mm/s^2
   double max_alpha_radps2 = 100 * kDegToRad;  ///< Pioneer 3-AT default, 100 deg/s^2
   int substeps = 10;                          ///< integration steps per frame
-  double front_m = 0.0;   ///< bump check: closest allowed approach to the station line (0: off)
+  double front_m = 0.0;  ///< bump check: closest allowed approach to the station line (0: off)
 
   void validate() const {
     const auto check = [](const char* name, double v, bool allow_zero) {
@@ -64,10 +64,14 @@ enum class Outcome { kParked, kStationLost, kCollided, kTimedOut };
 
 inline const char* toString(Outcome o) {
   switch (o) {
-    case Outcome::kParked: return "parked";
-    case Outcome::kStationLost: return "station lost";
-    case Outcome::kCollided: return "bumped into the station";
-    case Outcome::kTimedOut: return "timed out";
+    case Outcome::kParked:
+      return "parked";
+    case Outcome::kStationLost:
+      return "station lost";
+    case Outcome::kCollided:
+      return "bumped into the station";
+    case Outcome::kTimedOut:
+      return "timed out";
   }
   return "?";
 }
@@ -76,7 +80,7 @@ inline const char* toString(Outcome o) {
 struct Sample {
   double t_s = 0.0;
   Pose pose = Pose::Zero();
-  std::array<double, 3> u_px{};  ///< measured u1..u3 (NaN where not seen)
+  std::array<double, 3> u_px{};         ///< measured u1..u3 (NaN where not seen)
   double v_cmd = 0.0, omega_cmd = 0.0;  ///< the command of this frame
   double v = 0.0, omega = 0.0;          ///< the robot's actual velocities at the frame
   State state = State::kStart;
@@ -169,7 +173,7 @@ inline EpisodeResult runEpisode(const StationCamera& camera,
       std::size_t next = 0;
       for (std::size_t i = 0; i < 3; ++i)
         s.u_px[i] = truth.visible[i] && next < z.size() ? z[next++]
-                                                         : std::numeric_limits<double>::quiet_NaN();
+                                                        : std::numeric_limits<double>::quiet_NaN();
       s.v_cmd = cmd.v_mps;
       s.omega_cmd = cmd.omega_radps;
       s.v = v;

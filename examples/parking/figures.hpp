@@ -26,32 +26,43 @@ struct StateStyle {
 
 inline StateStyle styleOf(State s) {
   switch (s) {
-    case State::kStart: return {"#7f7f7f", "#ededed"};
-    case State::kForward: return {"#1f77b4", "#e2edf7"};
-    case State::kReverse: return {"#d62728", "#f9e3e3"};
-    case State::kStop: return {"#000000", "#ffffff"};
-    case State::kLost: return {"#9467bd", "#ffffff"};
+    case State::kStart:
+      return {"#7f7f7f", "#ededed"};
+    case State::kForward:
+      return {"#1f77b4", "#e2edf7"};
+    case State::kReverse:
+      return {"#d62728", "#f9e3e3"};
+    case State::kStop:
+      return {"#000000", "#ffffff"};
+    case State::kLost:
+      return {"#9467bd", "#ffffff"};
   }
   return {"#000000", "#ffffff"};
 }
 
-inline void titleLines(svg::Canvas& c, const std::string& title,
-                       const std::vector<std::string>& lines, double x, double y) {
+inline void titleLines(svg::Canvas& c,
+                       const std::string& title,
+                       const std::vector<std::string>& lines,
+                       double x,
+                       double y) {
   c.text(x, y, title, "font-size=\"15\" font-weight=\"bold\"");
   for (std::size_t i = 0; i < lines.size(); ++i)
     c.text(x, y + 18 + 15 * static_cast<double>(i), lines[i], "fill=\"#333\"");
 }
 
 /// The station (wall, features P1-P3) in a top-view frame.
-inline void drawStation(svg::Canvas& c, const svg::Frame& f, const StationCamera& camera,
+inline void drawStation(svg::Canvas& c,
+                        const svg::Frame& f,
+                        const StationCamera& camera,
                         bool labels) {
-  c.line(f.left, f.py(0.0), f.left + f.width, f.py(0.0),
-         "stroke=\"#bbbbbb\" stroke-width=\"3\"");
+  c.line(f.left, f.py(0.0), f.left + f.width, f.py(0.0), "stroke=\"#bbbbbb\" stroke-width=\"3\"");
   for (int i = 0; i < 3; ++i) {
     const auto p = camera.feature(i);
     c.rect(f.px(p.x()) - 4, f.py(p.y()) - 4, 8, 8, "fill=\"black\"");
     if (labels)
-      c.text(f.px(p.x()), f.py(p.y()) - 9, "P" + std::to_string(i + 1),
+      c.text(f.px(p.x()),
+             f.py(p.y()) - 9,
+             "P" + std::to_string(i + 1),
              "text-anchor=\"middle\" font-size=\"11\"");
   }
 }
@@ -59,8 +70,10 @@ inline void drawStation(svg::Canvas& c, const svg::Frame& f, const StationCamera
 }  // namespace figures_detail
 
 /// Top view of one episode (needs recorded samples).
-inline void writePathSvg(const std::string& path, const EpisodeResult& r,
-                         const StationCamera& camera, const std::string& title,
+inline void writePathSvg(const std::string& path,
+                         const EpisodeResult& r,
+                         const StationCamera& camera,
+                         const std::string& title,
                          const std::vector<std::string>& lines) {
   using figures_detail::styleOf;
   double x0 = -camera.params().spacing_m, x1 = camera.params().spacing_m;
@@ -94,7 +107,10 @@ inline void writePathSvg(const std::string& path, const EpisodeResult& r,
   figures_detail::titleLines(c, title, lines, 20, 26);
   svg::axes(c, f, "x (m), lateral", "y (m), towards the station");
   figures_detail::drawStation(c, f, camera, true);
-  c.line(f.px(0.0), f.top, f.px(0.0), f.top + f.height,
+  c.line(f.px(0.0),
+         f.top,
+         f.px(0.0),
+         f.top + f.height,
          "stroke=\"#999\" stroke-width=\"1\" stroke-dasharray=\"5,4\"");
   // Path, one polyline per state interval (each joined to the next interval's first point).
   for (std::size_t i = 0; i < r.samples.size();) {
@@ -104,10 +120,14 @@ inline void writePathSvg(const std::string& path, const EpisodeResult& r,
       pts.emplace_back(r.samples[j].pose[0], r.samples[j].pose[1]);
       ++j;
     }
-    if (j < r.samples.size()) pts.emplace_back(r.samples[j].pose[0], r.samples[j].pose[1]);
-    else pts.emplace_back(r.final_pose[0], r.final_pose[1]);
-    c.polyline(f, pts, std::string("stroke=\"") + styleOf(r.samples[i].state).line +
-                           "\" stroke-width=\"2\"");
+    if (j < r.samples.size())
+      pts.emplace_back(r.samples[j].pose[0], r.samples[j].pose[1]);
+    else
+      pts.emplace_back(r.final_pose[0], r.final_pose[1]);
+    c.polyline(
+        f,
+        pts,
+        std::string("stroke=\"") + styleOf(r.samples[i].state).line + "\" stroke-width=\"2\"");
     i = j;
   }
   for (const Transition& t : r.transitions) {
@@ -115,10 +135,18 @@ inline void writePathSvg(const std::string& path, const EpisodeResult& r,
     const Pose& p = r.samples[static_cast<std::size_t>(t.frame)].pose;
     c.circle(f.px(p[0]), f.py(p[1]), 3, "fill=\"white\" stroke=\"#333\" stroke-width=\"1\"");
   }
-  c.arrowhead(f, r.start[0], r.start[1], r.start[2], 16,
+  c.arrowhead(f,
+              r.start[0],
+              r.start[1],
+              r.start[2],
+              16,
               "fill=\"white\" stroke=\"black\" stroke-width=\"1.5\"");
   c.text(f.px(r.start[0]) + 12, f.py(r.start[1]) + 16, "start", "font-size=\"11\"");
-  c.arrowhead(f, r.goal[0], r.goal[1], r.goal[2], 16,
+  c.arrowhead(f,
+              r.goal[0],
+              r.goal[1],
+              r.goal[2],
+              16,
               "fill=\"#2ca02c\" fill-opacity=\"0.6\" stroke=\"#2ca02c\"");
   c.arrowhead(f, r.final_pose[0], r.final_pose[1], r.final_pose[2], 12, "fill=\"black\"");
 
@@ -129,20 +157,24 @@ inline void writePathSvg(const std::string& path, const EpisodeResult& r,
     svg::Points pts;
     State last = State::kStart;
     for (const Sample& s : r.samples) {
-      const bool inside = s.pose[0] > g.x0 && s.pose[0] < g.x1 && s.pose[1] > g.y0 &&
-                          s.pose[1] < g.y1;
+      const bool inside =
+          s.pose[0] > g.x0 && s.pose[0] < g.x1 && s.pose[1] > g.y0 && s.pose[1] < g.y1;
       if (s.state != last && !pts.empty()) {
         c.polyline(g, pts, std::string("stroke=\"") + styleOf(last).line + "\" stroke-width=\"2\"");
         pts.clear();
       }
       last = s.state;
-      if (inside) pts.emplace_back(s.pose[0], s.pose[1]);
-      else pts.emplace_back(std::numeric_limits<double>::quiet_NaN(), 0.0);
+      if (inside)
+        pts.emplace_back(s.pose[0], s.pose[1]);
+      else
+        pts.emplace_back(std::numeric_limits<double>::quiet_NaN(), 0.0);
     }
     pts.emplace_back(r.final_pose[0], r.final_pose[1]);
     c.polyline(g, pts, std::string("stroke=\"") + styleOf(last).line + "\" stroke-width=\"2\"");
   }
-  c.rect(g.px(r.goal[0] - 0.04), g.py(r.goal[1] + 0.005), g.px(0.04) - g.px(-0.04),
+  c.rect(g.px(r.goal[0] - 0.04),
+         g.py(r.goal[1] + 0.005),
+         g.px(0.04) - g.px(-0.04),
          g.py(-0.005) - g.py(0.005),
          "fill=\"none\" stroke=\"#2ca02c\" stroke-dasharray=\"4,3\"");
   c.circle(g.px(r.goal[0]), g.py(r.goal[1]), 4, "fill=\"#2ca02c\"");
@@ -152,19 +184,24 @@ inline void writePathSvg(const std::string& path, const EpisodeResult& r,
   const double lx = g.left;
   ly = svg::legendEntry(c, lx, ly, "stroke=\"#1f77b4\" stroke-width=\"2\"", "Forward");
   ly = svg::legendEntry(c, lx, ly, "stroke=\"#d62728\" stroke-width=\"2\"", "Reverse");
-  ly = svg::legendEntry(c, lx, ly, "stroke=\"#7f7f7f\" stroke-width=\"2\"",
-                        "Start (turning on the spot)");
+  ly = svg::legendEntry(
+      c, lx, ly, "stroke=\"#7f7f7f\" stroke-width=\"2\"", "Start (turning on the spot)");
   ly = svg::legendEntry(c, lx, ly, "fill=\"white\" stroke=\"#333\"", "state change", true);
   ly = svg::legendEntry(c, lx, ly, "fill=\"#2ca02c\"", "goal (reference view)", true);
   ly = svg::legendEntry(c, lx, ly, "fill=\"black\"", "final pose", true);
-  svg::legendEntry(c, lx, ly, "stroke=\"#2ca02c\" stroke-dasharray=\"4,3\"",
+  svg::legendEntry(c,
+                   lx,
+                   ly,
+                   "stroke=\"#2ca02c\" stroke-dasharray=\"4,3\"",
                    "thesis repeatability +-4 cm x, +-0.5 cm y");
   c.write(path);
 }
 
 /// Feature positions and velocities over time (needs recorded samples).
-inline void writeFeaturesSvg(const std::string& path, const EpisodeResult& r,
-                             const ControllerParams& params, const std::string& title,
+inline void writeFeaturesSvg(const std::string& path,
+                             const EpisodeResult& r,
+                             const ControllerParams& params,
+                             const std::string& title,
                              const std::vector<std::string>& lines) {
   using figures_detail::styleOf;
   const double T = r.samples.empty() ? 1.0 : std::max(r.samples.back().t_s, 1e-3);
@@ -189,7 +226,10 @@ inline void writeFeaturesSvg(const std::string& path, const EpisodeResult& r,
     const double t_a = r.samples[i].t_s;
     const double t_b = j < r.samples.size() ? r.samples[j].t_s : T;
     for (const svg::Frame* f : {&fu, &fv, &fw})
-      c.rect(f->px(t_a), f->top, std::max(f->px(t_b) - f->px(t_a), 0.5), f->height,
+      c.rect(f->px(t_a),
+             f->top,
+             std::max(f->px(t_b) - f->px(t_a), 0.5),
+             f->height,
              std::string("fill=\"") + styleOf(r.samples[i].state).band + "\"");
     i = j;
   }
@@ -200,8 +240,12 @@ inline void writeFeaturesSvg(const std::string& path, const EpisodeResult& r,
   const char* colours[3] = {"#1b9e77", "#d95f02", "#7570b3"};
   for (std::size_t k = 0; k < 3; ++k) {
     const double u_ref = params.reference_px[k];
-    c.line(fu.px(0), fu.py(u_ref), fu.px(T), fu.py(u_ref),
-           std::string("stroke=\"") + colours[k] + "\" stroke-dasharray=\"6,4\" stroke-width=\"1\"");
+    c.line(
+        fu.px(0),
+        fu.py(u_ref),
+        fu.px(T),
+        fu.py(u_ref),
+        std::string("stroke=\"") + colours[k] + "\" stroke-dasharray=\"6,4\" stroke-width=\"1\"");
     svg::Points pts;
     for (const Sample& s : r.samples) pts.emplace_back(s.t_s, s.u_px[k]);
     c.polyline(fu, pts, std::string("stroke=\"") + colours[k] + "\" stroke-width=\"1.6\"");
@@ -232,12 +276,14 @@ inline void writeFeaturesSvg(const std::string& path, const EpisodeResult& r,
   const double lx = fu.left + fu.width + 20;
   double ly = fu.top + 10;
   for (std::size_t k = 0; k < 3; ++k)
-    ly = svg::legendEntry(c, lx, ly, std::string("stroke=\"") + colours[k] + "\" stroke-width=\"2\"",
+    ly = svg::legendEntry(c,
+                          lx,
+                          ly,
+                          std::string("stroke=\"") + colours[k] + "\" stroke-width=\"2\"",
                           "u" + std::to_string(k + 1));
-  ly = svg::legendEntry(c, lx, ly, "stroke=\"#555\" stroke-dasharray=\"6,4\"",
-                        "reference u_i^r");
-  ly = svg::legendEntry(c, lx, ly, "stroke=\"black\" stroke-dasharray=\"2,2\"",
-                        "virtual edge (c or W - c)");
+  ly = svg::legendEntry(c, lx, ly, "stroke=\"#555\" stroke-dasharray=\"6,4\"", "reference u_i^r");
+  ly = svg::legendEntry(
+      c, lx, ly, "stroke=\"black\" stroke-dasharray=\"2,2\"", "virtual edge (c or W - c)");
   ly += 8;
   for (State s : {State::kStart, State::kForward, State::kReverse}) {
     c.rect(lx, ly - 11, 22, 11, std::string("fill=\"") + styleOf(s).band + "\" stroke=\"#bbb\"");
@@ -251,9 +297,13 @@ inline void writeFeaturesSvg(const std::string& path, const EpisodeResult& r,
 }
 
 /// Starts and final positions of a study, for two controller variants (Fig. 5.15/5.16).
-inline void writeStudySvg(const std::string& path, const StationCamera& camera, const Pose& goal,
-                          const StudyResult& adaptive, const StudyResult& fixed_c,
-                          const std::string& fixed_label, const std::string& title,
+inline void writeStudySvg(const std::string& path,
+                          const StationCamera& camera,
+                          const Pose& goal,
+                          const StudyResult& adaptive,
+                          const StudyResult& fixed_c,
+                          const std::string& fixed_label,
+                          const std::string& title,
                           const std::vector<std::string>& lines) {
   const double top = 40 + 18 + 15.0 * static_cast<double>(lines.size()) + 20;
   // Left: the starts in the x-y plane.
@@ -281,27 +331,41 @@ inline void writeStudySvg(const std::string& path, const StationCamera& camera, 
   c.text(fs.left, fs.top - 8, "starts (one arrow per run)", "font-size=\"11\"");
   figures_detail::drawStation(c, fs, camera, false);
   for (const StudyRun& r : adaptive.runs)
-    c.arrowhead(fs, r.start[0], r.start[1], r.start[2], 7,
+    c.arrowhead(fs,
+                r.start[0],
+                r.start[1],
+                r.start[2],
+                7,
                 r.outcome == Outcome::kParked ? "fill=\"#1f77b4\" fill-opacity=\"0.7\""
                                               : "fill=\"#d62728\"");
   c.circle(fs.px(goal[0]), fs.py(goal[1]), 4, "fill=\"#2ca02c\"");
 
   svg::axes(c, fe, "final x error (cm), lateral", "final y error (cm), along the axis", 8, 6);
   c.text(fe.left, fe.top - 8, "final positions relative to the goal", "font-size=\"11\"");
-  c.rect(fe.px(-4), fe.py(0.5), fe.px(4) - fe.px(-4), fe.py(-0.5) - fe.py(0.5),
+  c.rect(fe.px(-4),
+         fe.py(0.5),
+         fe.px(4) - fe.px(-4),
+         fe.py(-0.5) - fe.py(0.5),
          "fill=\"none\" stroke=\"#2ca02c\" stroke-width=\"1.5\" stroke-dasharray=\"5,3\"");
   for (const StudyRun& r : fixed_c.runs)
     if (r.outcome == Outcome::kParked)
-      c.circle(fe.px(100 * r.error[0]), fe.py(100 * r.error[1]), 2.6,
+      c.circle(fe.px(100 * r.error[0]),
+               fe.py(100 * r.error[1]),
+               2.6,
                "fill=\"none\" stroke=\"#ff7f0e\" stroke-width=\"1\"");
   for (const StudyRun& r : adaptive.runs)
     if (r.outcome == Outcome::kParked)
-      c.circle(fe.px(100 * r.error[0]), fe.py(100 * r.error[1]), 2.2,
+      c.circle(fe.px(100 * r.error[0]),
+               fe.py(100 * r.error[1]),
+               2.2,
                "fill=\"#1f77b4\" fill-opacity=\"0.75\"");
   double ly = fe.top + fe.height + 55;
   ly = svg::legendEntry(c, fe.left, ly, "fill=\"#1f77b4\"", "adaptive c (eq. 5.9)", true);
   ly = svg::legendEntry(c, fe.left, ly, "fill=\"none\" stroke=\"#ff7f0e\"", fixed_label, true);
-  svg::legendEntry(c, fe.left, ly, "stroke=\"#2ca02c\" stroke-dasharray=\"5,3\"",
+  svg::legendEntry(c,
+                   fe.left,
+                   ly,
+                   "stroke=\"#2ca02c\" stroke-dasharray=\"5,3\"",
                    "thesis repeatability, +-4 cm x, +-0.5 cm y (Sec. 5.6)");
   double ls = fs.top + fs.height + 55;
   ls = svg::legendEntry(c, fs.left, ls, "fill=\"#1f77b4\"", "start, parked (adaptive c)", true);

@@ -127,8 +127,10 @@ std::string noiseLine(const parking::CameraParams& c) {
          fixed(100 * c.spacing_m, 1) + " cm";
 }
 
-int runOne(const Options& o, const parking::StationCamera& camera,
-           const parking::ControllerParams& cp, const parking::RobotParams& robot) {
+int runOne(const Options& o,
+           const parking::StationCamera& camera,
+           const parking::ControllerParams& cp,
+           const parking::RobotParams& robot) {
   const parking::Pose start(o.start_x_m, o.start_y_m, o.start_heading_deg * kDegToRad);
   parking::EpisodeOptions eo;
   eo.max_time_s = o.max_time_s;
@@ -150,9 +152,11 @@ int runOne(const Options& o, const parking::StationCamera& camera,
          << " deg";
     const std::string path_svg = o.svg_prefix + "_path.svg";
     const std::string features_svg = o.svg_prefix + "_features.svg";
-    parking::writePathSvg(path_svg, r, camera, "Hybrid parking controller: robot path",
-                          {l1.str(), l2.str()});
-    parking::writeFeaturesSvg(features_svg, r, cp,
+    parking::writePathSvg(
+        path_svg, r, camera, "Hybrid parking controller: robot path", {l1.str(), l2.str()});
+    parking::writeFeaturesSvg(features_svg,
+                              r,
+                              cp,
                               "Feature positions and velocities during parking",
                               {l1.str(), l2.str()});
     written = {path_svg, features_svg};
@@ -225,20 +229,21 @@ int runOne(const Options& o, const parking::StationCamera& camera,
               << parking::toString(t.to) << std::right << "  " << std::setw(5)
               << parking::toString(t.event) << "  c = " << fixed(t.c_px, 1) << " px\n";
   std::cout << "outcome: " << parking::toString(r.outcome) << " after " << fixed(r.time_s, 2)
-            << " s; " << r.cycles << " forward-reverse cycle" << (r.cycles == 1 ? "" : "s")
-            << " (" << r.forward_moves << " forward, " << r.reverse_moves << " reverse moves)\n"
+            << " s; " << r.cycles << " forward-reverse cycle" << (r.cycles == 1 ? "" : "s") << " ("
+            << r.forward_moves << " forward move" << (r.forward_moves == 1 ? "" : "s") << ", "
+            << r.reverse_moves << " reverse move" << (r.reverse_moves == 1 ? "" : "s") << ")\n"
             << "final pose error" << (parked ? "" : " (not parked)") << ": x "
-            << fixed(100 * r.error[0], 2) << " cm (lateral), y "
-            << fixed(100 * r.error[1], 2) << " cm (along the axis), heading "
-            << fixed(r.error[2] / kDegToRad, 2) << " deg\n"
-            << "closest approach to the station: " << fixed(r.min_station_distance_m, 3)
-            << " m\n";
+            << fixed(100 * r.error[0], 2) << " cm (lateral), y " << fixed(100 * r.error[1], 2)
+            << " cm (along the axis), heading " << fixed(r.error[2] / kDegToRad, 2) << " deg\n"
+            << "closest approach to the station: " << fixed(r.min_station_distance_m, 3) << " m\n";
   for (const std::string& f : written) std::cout << "wrote " << f << "\n";
   return parked ? 0 : 3;
 }
 
-int runStudyMode(const Options& o, const parking::StationCamera& camera,
-                 const parking::ControllerParams& cp, const parking::RobotParams& robot) {
+int runStudyMode(const Options& o,
+                 const parking::StationCamera& camera,
+                 const parking::ControllerParams& cp,
+                 const parking::RobotParams& robot) {
   parking::StudyOptions so = o.study_options;
   so.seed = o.seed;
   so.max_time_s = o.max_time_s;
@@ -265,15 +270,18 @@ int runStudyMode(const Options& o, const parking::StationCamera& camera,
        << "+-" << fixed(so.max_heading_offset_deg, 0) << " deg off P2, whole station in view";
     l1 << noiseLine(camera.params()) << "; seed " << o.seed;
     l2 << "adaptive c: " << s.parked << "/" << s.runs << " parked, spread +-"
-       << fixed(100 * s.x_spread_m, 2) << " cm x, +-" << fixed(100 * s.y_spread_m, 2)
-       << " cm y, " << fixed(s.mean_cycles, 2) << " cycles, " << fixed(s.mean_time_s, 1)
-       << " s on average";
+       << fixed(100 * s.x_spread_m, 2) << " cm x, +-" << fixed(100 * s.y_spread_m, 2) << " cm y, "
+       << fixed(s.mean_cycles, 2) << " cycles, " << fixed(s.mean_time_s, 1) << " s on average";
     const auto& h = rh.summary;
     l3 << "fixed c = " << fixed(cp.c_max_px, 0) << " px: " << h.parked << "/" << h.runs
        << " parked, spread +-" << fixed(100 * h.x_spread_m, 2) << " cm x, +-"
        << fixed(100 * h.y_spread_m, 2) << " cm y, " << fixed(h.mean_cycles, 2) << " cycles, "
        << fixed(h.mean_time_s, 1) << " s on average";
-    parking::writeStudySvg(svg_path, camera, goal, ra, rh,
+    parking::writeStudySvg(svg_path,
+                           camera,
+                           goal,
+                           ra,
+                           rh,
                            "fixed c = " + fixed(cp.c_max_px, 0) + " px (no adaptation)",
                            "Repeatability study: final parking positions",
                            {l0.str(), l1.str(), l2.str(), l3.str()});
@@ -304,8 +312,8 @@ int runStudyMode(const Options& o, const parking::StationCamera& camera,
   std::cout << "parking --study: " << so.runs << " random starts, " << fixed(so.r_min_m, 2) << "-"
             << fixed(so.r_max_m, 2) << " m from P2, within +-" << fixed(so.max_angle_deg, 1)
             << " deg of the axis, heading +-" << fixed(so.max_heading_offset_deg, 1)
-            << " deg off P2, whole station in view\n  " << noiseLine(camera.params())
-            << "; seed " << o.seed << "\n\n";
+            << " deg off P2, whole station in view\n  " << noiseLine(camera.params()) << "; seed "
+            << o.seed << "\n\n";
   std::cout << "  virtual edge c          parked   lost  t/o   x spread   y spread   cycles "
                "(max)   time s (max)\n";
   const auto row = [&](const std::string& name, const parking::StudySummary& s) {
@@ -313,10 +321,9 @@ int runStudyMode(const Options& o, const parking::StationCamera& camera,
               << s.parked << "/" << std::setw(3) << s.runs << std::setw(6) << s.station_lost
               << std::setw(5) << s.timed_out << "   +-" << std::setw(5)
               << fixed(100 * s.x_spread_m, 2) << " cm  +-" << std::setw(4)
-              << fixed(100 * s.y_spread_m, 2) << " cm  " << std::setw(5)
-              << fixed(s.mean_cycles, 2) << " (" << std::setw(2) << s.max_cycles << ")   "
-              << std::setw(6) << fixed(s.mean_time_s, 1) << " (" << fixed(s.max_time_s, 1)
-              << ")\n";
+              << fixed(100 * s.y_spread_m, 2) << " cm  " << std::setw(5) << fixed(s.mean_cycles, 2)
+              << " (" << std::setw(2) << s.max_cycles << ")   " << std::setw(6)
+              << fixed(s.mean_time_s, 1) << " (" << fixed(s.max_time_s, 1) << ")\n";
   };
   row("adaptive (eq. 5.9)", ra.summary);
   row("fixed " + fixed(cp.c_max_px, 0) + " px (c_max)", rh.summary);
@@ -365,7 +372,9 @@ int main(int argc, char** argv) {
   const auto nonneg = finite(true, true);
   app.add_option("--seed", o.seed, "seed of the pixel noise (and of the study's starts)")
       ->capture_default_str();
-  app.add_option("--start-x", o.start_x_m, "start x (m), lateral")->check(ok)->capture_default_str();
+  app.add_option("--start-x", o.start_x_m, "start x (m), lateral")
+      ->check(ok)
+      ->capture_default_str();
   app.add_option("--start-y", o.start_y_m, "start y (m), < 0: in front of the station")
       ->check(ok)
       ->capture_default_str();
@@ -399,22 +408,27 @@ int main(int argc, char** argv) {
   app.add_option("--c-gain", cp.c_gain, "k_s k of eq. 5.9 (px of c per px of asymmetry)")
       ->check(ok)
       ->capture_default_str();
-  app.add_flag("--no-adapt", o.no_adapt,
+  app.add_flag("--no-adapt",
+               o.no_adapt,
                "fixed virtual edge --c-static instead of eq. 5.9 (one attempt; --study always "
                "runs adaptive, fixed c_max and fixed c_min)");
   app.add_option("--c-static", cp.c_static_px, "the fixed virtual edge with --no-adapt (px)")
       ->check(ok)
       ->capture_default_str();
-  app.add_flag("--raw-asymmetry", o.raw_asymmetry,
+  app.add_flag("--raw-asymmetry",
+               o.raw_asymmetry,
                "thesis as printed: side and c from the raw f1 - f2 (default: scaled to the "
                "reference size, relative to the reference)");
-  app.add_flag("--thesis-forward-exit", o.thesis_forward_exit,
-               "end a forward move only on the uncontrolled feature (default: also when A >= W - 2c)");
-  app.add_option("--start-exit-frames", cp.start_exit_frames,
+  app.add_flag(
+      "--thesis-forward-exit",
+      o.thesis_forward_exit,
+      "end a forward move only on the uncontrolled feature (default: also when A >= W - 2c)");
+  app.add_option("--start-exit-frames",
+                 cp.start_exit_frames,
                  "frames Start averages f1, f2, E_A over once aligned (thesis: 1)")
       ->capture_default_str();
-  app.add_option("--parked-frames", cp.parked_frames,
-                 "consecutive frames eq. 5.1 must hold (thesis: 1)")
+  app.add_option(
+         "--parked-frames", cp.parked_frames, "consecutive frames eq. 5.1 must hold (thesis: 1)")
       ->capture_default_str();
   app.add_option("--A-min", cp.A_min_px, "reverse until the station is narrower (px)")
       ->check(ok)
@@ -444,7 +458,8 @@ int main(int argc, char** argv) {
   app.add_option("--alpha", alpha_degps2, "robot turn acceleration limit (deg/s^2, 0: none)")
       ->check(nonneg)
       ->capture_default_str();
-  app.add_option("--bump", robot.front_m,
+  app.add_option("--bump",
+                 robot.front_m,
                  "end as bumped when the robot centre comes this close to the station line "
                  "(m, 0: off)")
       ->check(nonneg)
@@ -453,7 +468,8 @@ int main(int argc, char** argv) {
       ->check(pos)
       ->capture_default_str();
   app.add_flag("--json", o.json, "print one JSON object instead of text");
-  app.add_option("--svg-prefix", o.svg_prefix,
+  app.add_option("--svg-prefix",
+                 o.svg_prefix,
                  "write <prefix>_path.svg and <prefix>_features.svg (--study: <prefix>_study.svg); "
                  "\"\" for none")
       ->capture_default_str();
@@ -467,11 +483,13 @@ int main(int argc, char** argv) {
   app.add_option("--study-r-max", o.study_options.r_max_m, "study: farthest start from P2 (m)")
       ->check(ok)
       ->capture_default_str();
-  app.add_option("--study-angle", o.study_options.max_angle_deg,
+  app.add_option("--study-angle",
+                 o.study_options.max_angle_deg,
                  "study: largest polar angle of a start from the axis (deg)")
       ->check(ok)
       ->capture_default_str();
-  app.add_option("--study-heading", o.study_options.max_heading_offset_deg,
+  app.add_option("--study-heading",
+                 o.study_options.max_heading_offset_deg,
                  "study: largest heading offset from P2 (deg)")
       ->check(ok)
       ->capture_default_str();

@@ -73,8 +73,8 @@ struct CameraParams {
 
 /// The true (noise-free) view of the station from one pose.
 struct StationView {
-  std::array<double, 3> u{};          ///< eq. 5.3, may lie outside [0, W]
-  std::array<bool, 3> visible{};      ///< in front of the camera and inside the image
+  std::array<double, 3> u{};      ///< eq. 5.3, may lie outside [0, W]
+  std::array<bool, 3> visible{};  ///< in front of the camera and inside the image
   bool allVisible() const { return visible[0] && visible[1] && visible[2]; }
 };
 
@@ -99,8 +99,8 @@ class StationCamera {
       const auto k = static_cast<std::size_t>(i);
       out.u[k] = x_r > 0.0 ? 0.5 * p_.image_width_px - p_.focal_px * y_r / x_r
                            : std::numeric_limits<double>::quiet_NaN();
-      out.visible[k] = pose[1] < 0.0 && x_r > 1e-6 && out.u[k] >= 0.0 &&
-                       out.u[k] <= p_.image_width_px;
+      out.visible[k] =
+          pose[1] < 0.0 && x_r > 1e-6 && out.u[k] >= 0.0 && out.u[k] <= p_.image_width_px;
     }
     return out;
   }

@@ -43,8 +43,10 @@ struct StudyOptions {
     const auto bad = [](const std::string& sentence) {
       sylva::fail(sylva::ErrorCode::kInvalidArgument, "study: " + sentence);
     };
-    for (double v : {r_min_m, r_max_m, max_angle_deg, max_heading_offset_deg, margin_px, max_time_s})
-      if (!std::isfinite(v)) sylva::fail(sylva::ErrorCode::kNonFinite, "study: options must be finite");
+    for (double v :
+         {r_min_m, r_max_m, max_angle_deg, max_heading_offset_deg, margin_px, max_time_s})
+      if (!std::isfinite(v))
+        sylva::fail(sylva::ErrorCode::kNonFinite, "study: options must be finite");
     if (runs < 1 || runs > 10000000) bad("runs must be in [1, 10^7]");
     if (!(r_min_m > 0.0 && r_min_m <= r_max_m)) bad("need 0 < r_min_m <= r_max_m");
     if (!(max_angle_deg >= 0.0 && max_angle_deg < 89.0)) bad("max_angle_deg must be in [0, 89)");
@@ -120,10 +122,17 @@ inline StudySummary summarize(const std::vector<StudyRun>& runs) {
   for (const StudyRun& r : runs) {
     s.min_station_distance_m = std::min(s.min_station_distance_m, r.min_station_distance_m);
     switch (r.outcome) {
-      case Outcome::kParked: break;
-      case Outcome::kStationLost: ++s.station_lost; continue;
-      case Outcome::kTimedOut: ++s.timed_out; continue;
-      case Outcome::kCollided: ++s.collided; continue;
+      case Outcome::kParked:
+        break;
+      case Outcome::kStationLost:
+        ++s.station_lost;
+        continue;
+      case Outcome::kTimedOut:
+        ++s.timed_out;
+        continue;
+      case Outcome::kCollided:
+        ++s.collided;
+        continue;
     }
     const double x = r.error[0], y = r.error[1], h = r.error[2];
     if (s.parked == 0) {

@@ -31,6 +31,8 @@ VARIANTS = [
     ("... and c_min = 275 px (Fig. 5.15)", ["--thesis-forward-exit", "--c-min", "275"]),
     ("Start decides on one frame", ["--start-exit-frames", "1"]),
     ("eq. 5.1 on two frames in a row", ["--parked-frames", "2"]),
+    ("no slower reverse near the goal", ["--v-slow", "0.1"]),
+    ("gains of Table 5.2 read as rad/s per px", ["--k1", "14.32", "--k2", "5.73"]),
     ("no pixel noise", ["--noise", "0"]),
     ("pixel noise 1 px", ["--noise", "1"]),
     ("pixel noise 1 px, eq. 5.1 on two frames", ["--noise", "1", "--parked-frames", "2"]),

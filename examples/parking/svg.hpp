@@ -28,18 +28,23 @@ inline std::string num(double v, int digits = 2) {
 inline std::string escape(const std::string& text) {
   std::string out;
   for (char c : text) {
-    if (c == '<') out += "&lt;";
-    else if (c == '>') out += "&gt;";
-    else if (c == '&') out += "&amp;";
-    else if (c == '"') out += "&quot;";
-    else out += c;
+    if (c == '<')
+      out += "&lt;";
+    else if (c == '>')
+      out += "&gt;";
+    else if (c == '&')
+      out += "&amp;";
+    else if (c == '"')
+      out += "&quot;";
+    else
+      out += c;
   }
   return out;
 }
 
 /// Maps data coordinates into a rectangle of the page (y up in data, down on the page).
 struct Frame {
-  double x0 = 0, x1 = 1, y0 = 0, y1 = 1;             ///< data range
+  double x0 = 0, x1 = 1, y0 = 0, y1 = 1;            ///< data range
   double left = 0, top = 0, width = 1, height = 1;  ///< page rectangle (px)
   double px(double x) const { return left + (x - x0) / (x1 - x0) * width; }
   double py(double y) const { return top + (y1 - y) / (y1 - y0) * height; }
@@ -83,8 +88,10 @@ class Canvas {
         open = false;
         continue;
       }
-      if (!open) os << "<polyline fill=\"none\" " << style << " points=\"";
-      else os << " ";
+      if (!open)
+        os << "<polyline fill=\"none\" " << style << " points=\"";
+      else
+        os << " ";
       os << num(f.px(x)) << "," << num(f.py(y));
       open = true;
     }
@@ -94,8 +101,8 @@ class Canvas {
 
   /// A filled triangle pointing along `heading` (radians, page-independent: data frame with
   /// equal scales assumed), centred at data point (x, y), `size` px long.
-  void arrowhead(const Frame& f, double x, double y, double heading, double size,
-                 const std::string& style) {
+  void arrowhead(
+      const Frame& f, double x, double y, double heading, double size, const std::string& style) {
     const double cx = f.px(x), cy = f.py(y);
     const double c = std::cos(heading), s = -std::sin(heading);  // page y points down
     const double tip_x = cx + size * c, tip_y = cy + size * s;
@@ -111,9 +118,8 @@ class Canvas {
     std::ofstream out(path);
     if (!out)
       sylva::fail(sylva::ErrorCode::kInvalidArgument, "cannot write the SVG file '" + path + "'");
-    out << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << num(width_, 0)
-        << "\" height=\"" << num(height_, 0) << "\" viewBox=\"0 0 " << num(width_, 0) << " "
-        << num(height_, 0)
+    out << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << num(width_, 0) << "\" height=\""
+        << num(height_, 0) << "\" viewBox=\"0 0 " << num(width_, 0) << " " << num(height_, 0)
         << "\" font-family=\"DejaVu Sans, Helvetica, Arial, sans-serif\" font-size=\"12\">\n"
         << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
         << body_.str() << "</svg>\n";
@@ -154,7 +160,9 @@ inline void axes(Canvas& c,
   for (double x = std::ceil(f.x0 / xs - 1e-9) * xs; x <= f.x1 + 1e-9 * xs; x += xs) {
     c.line(f.px(x), f.top, f.px(x), f.top + f.height, grid);
     if (x_tick_labels)
-      c.text(f.px(x), f.top + f.height + 15, num(x, digitsFor(xs)),
+      c.text(f.px(x),
+             f.top + f.height + 15,
+             num(x, digitsFor(xs)),
              "text-anchor=\"middle\" fill=\"#333\"");
   }
   for (double y = std::ceil(f.y0 / ys - 1e-9) * ys; y <= f.y1 + 1e-9 * ys; y += ys) {
@@ -166,14 +174,20 @@ inline void axes(Canvas& c,
     c.text(f.left + 0.5 * f.width, f.top + f.height + 33, x_label, "text-anchor=\"middle\"");
   if (!y_label.empty()) {
     const double x = f.left - 48, y = f.top + 0.5 * f.height;
-    c.text(x, y, y_label,
+    c.text(x,
+           y,
+           y_label,
            "text-anchor=\"middle\" transform=\"rotate(-90 " + num(x) + " " + num(y) + ")\"");
   }
 }
 
 /// One legend entry: a short line (or a marker) and its label; returns the next entry's y.
-inline double legendEntry(Canvas& c, double x, double y, const std::string& style,
-                          const std::string& label, bool marker = false) {
+inline double legendEntry(Canvas& c,
+                          double x,
+                          double y,
+                          const std::string& style,
+                          const std::string& label,
+                          bool marker = false) {
   if (marker)
     c.circle(x + 11, y - 4, 3.5, style);
   else

@@ -3,13 +3,12 @@
 // nonsense parameters.
 #include "sylva_catch.hpp"
 
-#include "error_helpers.hpp"
-
 #include <cmath>
 #include <limits>
 #include <string>
 #include <vector>
 
+#include "error_helpers.hpp"
 #include "parking/controller.hpp"
 
 namespace unity_parking_controller {
@@ -141,9 +140,10 @@ TEST_CASE("parking controller: Forward holds the far outer feature on the virtua
   }
 }
 
-TEST_CASE("parking controller: Forward ends with eps4 when the uncontrolled feature reaches its "
-          "virtual edge",
-          "[parking]") {
+TEST_CASE(
+    "parking controller: Forward ends with eps4 when the uncontrolled feature reaches its "
+    "virtual edge",
+    "[parking]") {
   ControllerParams p = oneFrameStart();
   p.adapt_c = false;
   p.c_static_px = 400.0;
@@ -219,12 +219,11 @@ TEST_CASE("parking controller: Reverse stops with eps3 on the parking condition 
   CHECK(c.transitions().size() == transitions);
 }
 
-TEST_CASE("parking controller: Reverse hands over to Forward with eps5 below A_min",
-          "[parking]") {
+TEST_CASE("parking controller: Reverse hands over to Forward with eps5 below A_min", "[parking]") {
   const ControllerParams p = oneFrameStart();
   HybridController c = inReverse(p);
   CHECK(c.step(centred(131.0, 131.0)).event == Event::kNone);  // A = 262 > A_min = 260
-  const Command cmd = c.step(centred(129.0, 129.0));          // A = 258
+  const Command cmd = c.step(centred(129.0, 129.0));           // A = 258
   CHECK(cmd.event == Event::kEps5);
   CHECK(cmd.state == State::kForward);
   CHECK(cmd.v_mps == p.v_forward_mps);

@@ -2,14 +2,13 @@
 // Table 5.3), the station-lost outcome, time-out and bump, reproducibility.
 #include "sylva_catch.hpp"
 
-#include "error_helpers.hpp"
-
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
 #include <vector>
 
+#include "error_helpers.hpp"
 #include "parking/episode.hpp"
 
 namespace unity_parking_episode {
@@ -32,8 +31,12 @@ constexpr double kDeg = 3.14159265358979323846 / 180.0;
 /// A start at (x, y) facing the centre feature P2.
 Pose facingP2(double x, double y) { return Pose(x, y, std::atan2(-y, -x)); }
 
-EpisodeResult park(const Pose& start, std::uint64_t seed, bool record = false,
-                   ControllerParams cp = {}, CameraParams cam = {}, RobotParams robot = {}) {
+EpisodeResult park(const Pose& start,
+                   std::uint64_t seed,
+                   bool record = false,
+                   ControllerParams cp = {},
+                   CameraParams cam = {},
+                   RobotParams robot = {}) {
   EpisodeOptions o;
   o.record = record;
   return parking::runEpisode(StationCamera(cam), cp, robot, start, seed, o);
@@ -48,8 +51,7 @@ bool withinThesisRepeatability(const EpisodeResult& r) {
 
 using namespace unity_parking_episode;
 
-TEST_CASE("parking episode: Experiment I, a start near the axis parks in one cycle",
-          "[parking]") {
+TEST_CASE("parking episode: Experiment I, a start near the axis parks in one cycle", "[parking]") {
   for (std::uint64_t seed = 1; seed <= 5; ++seed) {
     CAPTURE(seed);
     const EpisodeResult r = park(Pose(0.03, -1.0, 90.0 * kDeg), seed);
@@ -65,9 +67,10 @@ TEST_CASE("parking episode: Experiment I, a start near the axis parks in one cyc
   }
 }
 
-TEST_CASE("parking episode: Experiments II and III, starts far to either side park in a few "
-          "cycles",
-          "[parking]") {
+TEST_CASE(
+    "parking episode: Experiments II and III, starts far to either side park in a few "
+    "cycles",
+    "[parking]") {
   for (const double side : {+1.0, -1.0}) {
     for (std::uint64_t seed = 1; seed <= 3; ++seed) {
       CAPTURE(side, seed);
@@ -79,8 +82,9 @@ TEST_CASE("parking episode: Experiments II and III, starts far to either side pa
       CHECK(withinThesisRepeatability(r));
       // The first forward move holds the far feature: P3 on P3's side (x > 0), P1 otherwise.
       const auto first_forward =
-          std::find_if(r.samples.begin(), r.samples.end(),
-                       [](const parking::Sample& s) { return s.state == State::kForward; });
+          std::find_if(r.samples.begin(), r.samples.end(), [](const parking::Sample& s) {
+            return s.state == State::kForward;
+          });
       REQUIRE(first_forward != r.samples.end());
       CHECK(first_forward->holds_right == (side > 0));
     }
@@ -100,9 +104,10 @@ TEST_CASE("parking episode: a start without the whole station in view ends at on
   CHECK(r.samples.back().v_cmd == 0.0);
 }
 
-TEST_CASE("parking episode: the station leaving the image mid-run ends as lost, and the width test "
-          "of the forward move prevents it",
-          "[parking]") {
+TEST_CASE(
+    "parking episode: the station leaving the image mid-run ends as lost, and the width test "
+    "of the forward move prevents it",
+    "[parking]") {
   // 36 deg off the axis, 0.9 m away, no noise: with the thesis' forward exit alone the turn
   // lags, the robot ends the move 0.22 m from the station with P1 near the image edge, and
   // the Start turn pushes it out.
@@ -148,8 +153,7 @@ TEST_CASE("parking episode: the same seed gives the same run bit for bit", "[par
   CHECK(a.final_pose != c.final_pose);
 }
 
-TEST_CASE("parking episode: an ideal robot (no acceleration limits) parks as well",
-          "[parking]") {
+TEST_CASE("parking episode: an ideal robot (no acceleration limits) parks as well", "[parking]") {
   RobotParams ideal;
   ideal.max_accel_mps2 = 0.0;
   ideal.max_alpha_radps2 = 0.0;
@@ -161,8 +165,7 @@ TEST_CASE("parking episode: an ideal robot (no acceleration limits) parks as wel
 TEST_CASE("parking episode: bad inputs are refused", "[parking]") {
   const StationCamera cam;
   const Pose nan_start(std::numeric_limits<double>::quiet_NaN(), -1.0, 1.57);
-  CHECK(throwsCode([&] { parking::runEpisode(cam, {}, {}, nan_start, 1); },
-                   ErrorCode::kNonFinite));
+  CHECK(throwsCode([&] { parking::runEpisode(cam, {}, {}, nan_start, 1); }, ErrorCode::kNonFinite));
   ControllerParams other_width;
   other_width.image_width_px = 1600.0;
   CHECK(throwsCode([&] { parking::runEpisode(cam, other_width, {}, Pose(0, -1, 1.57), 1); },

@@ -2,13 +2,12 @@
 // sees the reference, pixel noise.
 #include "sylva_catch.hpp"
 
-#include "error_helpers.hpp"
-
 #include <array>
 #include <cmath>
 #include <limits>
 #include <vector>
 
+#include "error_helpers.hpp"
 #include "parking/station_camera.hpp"
 
 namespace unity_parking_station_camera {
@@ -44,8 +43,7 @@ TEST_CASE("station camera: facing P2 on the axis, P2 is at the centre, P1 and P3
   CHECK(v.u[2] == Approx(0.5 * c.image_width_px + half));
 }
 
-TEST_CASE("station camera: eq. 5.3 matches a hand computation from an oblique pose",
-          "[parking]") {
+TEST_CASE("station camera: eq. 5.3 matches a hand computation from an oblique pose", "[parking]") {
   const StationCamera cam;
   const Pose pose(0.23, -0.81, 1.75);
   const parking::StationView v = cam.view(pose);
@@ -69,7 +67,7 @@ TEST_CASE("station camera: turning left (counter-clockwise) moves every feature 
 TEST_CASE("station camera: features behind, outside the image or seen from behind are hidden",
           "[parking]") {
   const StationCamera cam;
-  CHECK_FALSE(cam.view(Pose(0.0, -1.0, -kHalfPi)).visible[1]);            // facing away
+  CHECK_FALSE(cam.view(Pose(0.0, -1.0, -kHalfPi)).visible[1]);  // facing away
   // Turned 31.5 deg left: P2 and P3 fall beyond the right image edge, P1 is still seen.
   const parking::StationView edge = cam.view(Pose(0.0, -1.0, kHalfPi + 0.55));
   CHECK(edge.visible[0]);

@@ -2,12 +2,11 @@
 // every start within the thesis' repeatability, faster than with a fixed virtual edge.
 #include "sylva_catch.hpp"
 
-#include "error_helpers.hpp"
-
 #include <cmath>
 #include <limits>
 #include <vector>
 
+#include "error_helpers.hpp"
 #include "parking/study.hpp"
 
 namespace unity_parking_study {
@@ -36,8 +35,7 @@ StudyRun run(Outcome outcome, double x, double y, int cycles, double time) {
 
 using namespace unity_parking_study;
 
-TEST_CASE("parking study: every start lies in the region and sees the whole station",
-          "[parking]") {
+TEST_CASE("parking study: every start lies in the region and sees the whole station", "[parking]") {
   const StationCamera cam;
   StudyOptions o;
   sylva::sim::Rng rng(9);
@@ -55,8 +53,7 @@ TEST_CASE("parking study: every start lies in the region and sees the whole stat
   }
 }
 
-TEST_CASE("parking study: the summary spreads are half ranges over the parked runs",
-          "[parking]") {
+TEST_CASE("parking study: the summary spreads are half ranges over the parked runs", "[parking]") {
   const std::vector<StudyRun> runs{run(Outcome::kParked, 0.01, -0.002, 1, 10.0),
                                    run(Outcome::kParked, -0.03, 0.004, 3, 30.0),
                                    run(Outcome::kStationLost, 5.0, 5.0, 9, 99.0),
@@ -81,14 +78,16 @@ TEST_CASE("parking study: the summary spreads are half ranges over the parked ru
   CHECK(none.x_spread_m == 0.0);
 }
 
-TEST_CASE("parking study: the adaptive controller parks every start within the thesis' "
-          "repeatability, in fewer cycles than with a fixed c",
-          "[parking]") {
+TEST_CASE(
+    "parking study: the adaptive controller parks every start within the thesis' "
+    "repeatability, in fewer cycles than with a fixed c",
+    "[parking]") {
   const StationCamera cam;
   StudyOptions o;
   o.runs = 60;
   o.seed = 7;
-  const parking::StudyResult adaptive = parking::runStudy(cam, ControllerParams{}, RobotParams{}, o);
+  const parking::StudyResult adaptive =
+      parking::runStudy(cam, ControllerParams{}, RobotParams{}, o);
   const parking::StudySummary& s = adaptive.summary;
   CHECK(s.success_rate == 1.0);
   CHECK(s.x_spread_m < 0.04);
