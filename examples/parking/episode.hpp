@@ -101,7 +101,8 @@ struct EpisodeResult {
   long frames = 0;
   double min_station_distance_m = 0.0;  ///< closest the robot centre came to the line y = 0
   std::vector<Transition> transitions;
-  std::vector<Sample> samples;  ///< filled when asked for
+  std::vector<Pose> transition_poses;  ///< the robot's pose at each transition's frame
+  std::vector<Sample> samples;         ///< filled when asked for
 };
 
 struct EpisodeOptions {
@@ -165,6 +166,8 @@ inline EpisodeResult runEpisode(const StationCamera& camera,
     const double t = static_cast<double>(k) * dt;
     const std::vector<double> z = camera.observe(x, rng);
     const Command cmd = controller.step(z);
+    while (r.transition_poses.size() < controller.transitions().size())
+      r.transition_poses.push_back(x);
     if (options.record) {
       Sample s;
       s.t_s = t;

@@ -195,13 +195,16 @@ int runOne(const Options& o,
                         {"position_m", std::hypot(r.error[0], r.error[1])}};
     j["min_station_distance_m"] = r.min_station_distance_m;
     nlohmann::json trace = nlohmann::json::array();
-    for (const parking::Transition& t : r.transitions)
+    for (std::size_t i = 0; i < r.transitions.size(); ++i) {
+      const parking::Transition& t = r.transitions[i];
       trace.push_back({{"frame", t.frame},
                        {"t_s", static_cast<double>(t.frame) * dt},
                        {"from", parking::toString(t.from)},
                        {"to", parking::toString(t.to)},
                        {"event", parking::toString(t.event)},
-                       {"c_px", t.c_px}});
+                       {"c_px", t.c_px},
+                       {"pose", poseJson(r.transition_poses[i])}});
+    }
     j["trace"] = trace;
     j["seed"] = o.seed;
     j["controller"] = controllerJson(cp);
@@ -222,12 +225,17 @@ int runOne(const Options& o,
                                  (cp.scaled_asymmetry ? " (scaled asymmetry)" : " (raw f1 - f2)")
                            : "fixed at " + fixed(cp.c_static_px, 0) + " px")
             << "\nFSM trace:\n";
-  for (const parking::Transition& t : r.transitions)
+  for (std::size_t i = 0; i < r.transitions.size(); ++i) {
+    const parking::Transition& t = r.transitions[i];
+    const parking::Pose& p = r.transition_poses[i];
     std::cout << "  t = " << std::setw(6) << fixed(static_cast<double>(t.frame) * dt, 2)
               << " s  frame " << std::setw(5) << t.frame << "  " << std::setw(7)
               << parking::toString(t.from) << " -> " << std::setw(7) << std::left
               << parking::toString(t.to) << std::right << "  " << std::setw(5)
-              << parking::toString(t.event) << "  c = " << fixed(t.c_px, 1) << " px\n";
+              << parking::toString(t.event) << "  c = " << fixed(t.c_px, 1) << " px  at ("
+              << fixed(p[0], 3) << ", " << fixed(p[1], 3) << ") m, " << fixed(p[2] / kDegToRad, 1)
+              << " deg\n";
+  }
   std::cout << "outcome: " << parking::toString(r.outcome) << " after " << fixed(r.time_s, 2)
             << " s; " << r.cycles << " forward-reverse cycle" << (r.cycles == 1 ? "" : "s") << " ("
             << r.forward_moves << " forward move" << (r.forward_moves == 1 ? "" : "s") << ", "

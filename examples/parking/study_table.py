@@ -55,9 +55,11 @@ def run(binary, args):
 def study_row(name, flags, s):
     shown = " ".join(flags) or "--study"
     shown = shown if shown.startswith("(") else f"`{shown}`"
-    return (f"| {name} | {shown} | {s['parked']}/{s['runs']} | "
-            f"{s['station_lost']} | {s['timed_out']} | +-{100 * s['x_spread_m']:.2f} | "
-            f"+-{100 * s['y_spread_m']:.2f} | {s['mean_cycles']:.2f} ({s['max_cycles']}) | "
+    head = f"| {name} | {shown} | {s['parked']}/{s['runs']} | {s['station_lost']} | {s['timed_out']} |"
+    if s["parked"] == 0:
+        return head + " - | - | - | - |"
+    return (head + f" +-{100 * s['x_spread_m']:.2f} | +-{100 * s['y_spread_m']:.2f} | "
+            f"{s['mean_cycles']:.2f} ({s['max_cycles']}) | "
             f"{s['mean_time_s']:.1f} ({s['max_time_s']:.1f}) |")
 
 
