@@ -101,7 +101,7 @@ inline void writePathSvg(const std::string& path,
   g.x0 = r.goal[0] - 0.06, g.x1 = r.goal[0] + 0.06;
   g.y0 = r.goal[1] - 0.03, g.y1 = r.goal[1] + 0.03;
   g.left = f.left + f.width + 90, g.top = f.top, g.width = 240, g.height = 120;
-  const double page_w = std::max(g.left + g.width + 30, 760.0);
+  const double page_w = std::max(g.left + 330, 760.0);  // room for the legend text
   const double page_h = std::max(f.top + f.height + 50, g.top + g.height + 260);
   svg::Canvas c(page_w, page_h);
   figures_detail::titleLines(c, title, lines, 20, 26);
