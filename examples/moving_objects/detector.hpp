@@ -49,7 +49,8 @@ struct DetectorOptions {
   MatchingOptions matching;
   SegmentOptions segments;
   int min_segment_points = 3;      ///< Sec. 4.4.1: shorter segments of M_C^s are ignored
-  int min_seed_points = 2;         ///< M_C^s segments shorter than this are noise, dropped before Algorithm 3
+  int min_seed_points = 2;         ///< M_C^s segments shorter than this are noise, dropped before Algorithm 3 ...
+  double seed_gap_factor = 3.0;    ///< ... unless they stand this many dd_c in front of the previous scan
   int replace_max_o_segments = 1;  ///< Algorithm 4 only with at most this many O_C^s segments (0: never)
   bool join_a = true;              ///< Algorithm 3, line 2
   bool join_o = true;              ///< Algorithm 3, line 3
@@ -142,7 +143,17 @@ class MovingObjectDetector {
     d.sets = classifyScans(g, previous, current, o.matching);  // stages 1-2
     // Stage 3.
     std::vector<Segment> m = segmentSet(g, current, d.sets.current, PointSet::kM, o.segments);
-    m.erase(std::remove_if(m.begin(), m.end(), [&](const Segment& s) { return s.size() < o.min_seed_points; }),
+    m.erase(std::remove_if(m.begin(), m.end(),
+                           [&](const Segment& s) {
+                             if (s.size() >= o.min_seed_points) return false;
+                             // A short seed stays when it stands well in front of what the
+                             // previous scan saw: more than seed_gap_factor * dd_c.
+                             double gap = 0.0;
+                             for (const int b : s.beams) gap = std::max(gap, d.sets.gap[static_cast<std::size_t>(b)]);
+                             const double threshold = rangeThreshold(o.matching.match_k, o.matching.match_floor_m,
+                                                                     g.angle_increment_rad, current.range(s.first()));
+                             return !(gap > o.seed_gap_factor * threshold);
+                           }),
             m.end());
     d.a_segments = segmentSet(g, current, d.sets.current, PointSet::kA, o.segments);
     d.o_segments = segmentSet(g, current, d.sets.current, PointSet::kO, o.segments);

@@ -130,11 +130,12 @@ struct SlamFigure {
 };
 
 inline void writeSlamSvg(const std::string& path, const SlamFigure& f) {
-  const double panel_w = 620, gap = 40, left = 40, top = 90;
+  const double gap = 40, left = 40, top = 90;
+  const double panel_w = f.panels.size() > 2 ? 460 : 620;
   std::vector<View> views;
   for (std::size_t i = 0; i < f.panels.size(); ++i)
     views.push_back(fit(f.x0, f.y0, f.x1, f.y1, left + i * (panel_w + gap), top + 20, panel_w, 600));
-  const double height = top + 20 + views.front().height() + 110;
+  const double height = top + 20 + views.front().height() + 80;
   Document doc(left + f.panels.size() * (panel_w + gap), height);
   doc.text(left, 24, f.title, 16, " font-weight=\"bold\"");
   for (std::size_t i = 0; i < f.subtitle.size(); ++i) doc.text(left, 44 + 15 * i, f.subtitle[i], 12);

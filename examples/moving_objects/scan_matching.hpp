@@ -139,6 +139,9 @@ struct SetClassification {
   std::vector<PointSet> current;   ///< per beam of L_C
   std::vector<PointSet> previous;  ///< per beam of L_P
   int free_space_moving = 0;       ///< readings put in M_C by the free-space extension
+  /// Per beam of L_C: for readings in M_C, how much nearer than the B_P^j on its scan line
+  /// (m; +infinity when put there by the free-space extension); 0 otherwise.
+  std::vector<double> gap;
 };
 
 /// True when the previous scan saw free space beyond world point p (the extension above).
@@ -171,6 +174,7 @@ inline SetClassification classifyScans(const ScanGeometry& g,
   SetClassification out;
   out.current.assign(static_cast<std::size_t>(current.size()), PointSet::kNone);
   out.previous.assign(static_cast<std::size_t>(previous.size()), PointSet::kNone);
+  out.gap.assign(static_cast<std::size_t>(current.size()), 0.0);
   std::vector<int> b_previous;
   for (int j = 0; j < previous.size(); ++j) {
     if (!previous.valid(j)) continue;
@@ -211,6 +215,7 @@ inline SetClassification classifyScans(const ScanGeometry& g,
       const auto cj = static_cast<std::size_t>(best);
       if (r_current < best_along) {  // lines 4-5
         out.current[ci] = PointSet::kM;
+        out.gap[ci] = best_along - r_current;
         out.previous[cj] = PointSet::kO;
       } else if (r_current > best_along) {  // lines 7-8
         out.current[ci] = PointSet::kO;
@@ -220,6 +225,7 @@ inline SetClassification classifyScans(const ScanGeometry& g,
       }
     } else if (o.free_space && previousSawFreeSpaceAt(g, previous, current.point(i), o)) {
       out.current[ci] = PointSet::kM;
+      out.gap[ci] = std::numeric_limits<double>::infinity();
       ++out.free_space_moving;
     } else {
       out.current[ci] = PointSet::kN;  // line 11

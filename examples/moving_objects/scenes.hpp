@@ -4,7 +4,8 @@
 // Default dynamic scene (like the thesis' Fig. 4.9 and 4.10): a 12.5 m x 10 m room with
 // pillars and a cabinet; a robot drives slowly into it (0.125 m/s) while three people walk
 // (one crossing 1.7-3.2 m in front of it, one about 7 m away, one walking diagonally away and
-// back) and a cart rolls sideways. Scans at 5 Hz (dt = 0.2 s, as in Sec. 4.4.2), 12 s.
+// back) and a cart rolls sideways at 0.75 m/s, about the minimum detectable speed of eq. 4.5
+// at its 4-6 m range. Scans at 5 Hz (dt = 0.2 s, as in Sec. 4.4.2), 12 s.
 // The seed only changes where along their routes the people start.
 //
 // SLAM scene: a robot drives 1.2 laps of a 40 m loop (rounded rectangle about 13 m x 6.7 m)
@@ -80,7 +81,7 @@ inline DefaultScene makeDefaultScene(std::uint64_t seed, int scans = 61) {
     o.start_distance_m = rng.uniform(0.0, 2.0 * (routes[p].b - routes[p].a).norm());
     s.world.addPerson(WalkingPerson2D(o, kFirstLegId + 2 * static_cast<Id>(p), kFirstLegId + 2 * static_cast<Id>(p) + 1));
   }
-  s.world.addRigidObject(sylva::sim::RigidObject2D::box(kCartId, 0.6, 0.45, Vec<3>(5.6, -3.2, 0.0), Vec<3>(0.0, 0.3, 0.0)));
+  s.world.addRigidObject(sylva::sim::RigidObject2D::box(kCartId, 0.6, 0.45, Vec<3>(5.6, -4.4, 0.0), Vec<3>(0.0, 0.75, 0.0)));
 
   for (int k = 0; k < scans; ++k) {
     const double t = k * s.dt_s;
