@@ -28,6 +28,7 @@
 // Same flags, same output, bit for bit. `moving_objects --help` lists the flags.
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -380,6 +381,7 @@ struct VariantStats {
   long long nees_steps = 0;
   double position_sq = 0.0;
   long long removed = 0, removed_on_legs = 0, features_on_legs = 0, leg_used = 0;
+  std::array<long long, 3> leg_by_motion{}, leg_removed_by_motion{}, leg_fused_by_motion{};
   std::vector<double> per_seed_rmse;
 };
 
@@ -430,6 +432,11 @@ SlamReport runSlamStudy(const Options& o, const std::string& svg_path) {
       st.removed_on_legs += r.removed_on_legs;
       st.features_on_legs += r.features_on_legs;
       st.leg_used += r.leg_observations_used;
+      for (std::size_t c = 0; c < 3; ++c) {
+        st.leg_by_motion[c] += r.leg_by_motion[c];
+        st.leg_removed_by_motion[c] += r.leg_removed_by_motion[c];
+        st.leg_fused_by_motion[c] += r.leg_fused_by_motion[c];
+      }
       st.per_seed_rmse.push_back(r.landmark_rmse_m);
       if (s == 0) {
         svg::SlamPanel panel;
@@ -749,6 +756,11 @@ int runSimulation(const Options& o) {
                             {"removed", v.removed},
                             {"removed_on_legs", v.removed_on_legs},
                             {"leg_features_used", v.leg_used},
+                            {"leg_features_by_motion",
+                             {{"classes", {"stance (not moving)", "slower than eq. 4.5", "detectable"}},
+                              {"extracted", v.leg_by_motion},
+                              {"removed", v.leg_removed_by_motion},
+                              {"fused_into_landmarks", v.leg_fused_by_motion}}},
                             {"per_seed_landmark_rmse_m", v.per_seed_rmse}});
       }
       int wins = 0;
@@ -820,6 +832,17 @@ int runSimulation(const Options& o) {
                 << v.features_on_legs << " (" << v.removed - v.removed_on_legs << " not on legs)\n";
     int wins = 0;
     for (int s = 0; s < slam.seeds; ++s) wins += slam.variants[1].per_seed_rmse[s] < slam.variants[0].per_seed_rmse[s];
+    std::cout << "   leg features by how far the leg moved since the previous scan (truth): stance / slower than eq. 4.5 / "
+                 "detectable\n";
+    for (const VariantStats& v : slam.variants) {
+      std::cout << "   " << std::left << std::setw(30) << v.name << std::right << "  extracted";
+      for (const long long n : v.leg_by_motion) std::cout << " " << n;
+      std::cout << ", removed";
+      for (const long long n : v.leg_removed_by_motion) std::cout << " " << n;
+      std::cout << ", fused into landmarks";
+      for (const long long n : v.leg_fused_by_motion) std::cout << " " << n;
+      std::cout << "\n";
+    }
     std::cout << "   robot NEES: mean over steps of one run, 95% bounds of one step [" << fixed(nees_lo, 2) << ", "
               << fixed(nees_hi, 2) << "]; removal lowers the pole-landmark error in " << wins << " of " << slam.seeds
               << " worlds\n";

@@ -24,6 +24,7 @@
 // landmarks born on legs are counted as spurious.
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -111,6 +112,10 @@ struct SlamResult {
   long long removed_on_legs = 0;      ///< ... of which on a leg (truth)
   long long leg_observations_used = 0;  ///< leg features fused or added
   long long leg_into_pole = 0;        ///< leg features fused into a pole-born landmark
+  /// Leg features by how far the leg moved in the scan interval before (truth): [0] not at
+  /// all (stance), [1] less than the closest-point threshold dd_c (too slow to detect,
+  /// eq. 4.5), [2] more. Per class: extracted, removed, fused into an existing landmark.
+  std::array<long long, 3> leg_by_motion{}, leg_removed_by_motion{}, leg_fused_by_motion{};
   std::vector<Vec<2>> estimated_path;
   std::vector<std::pair<Vec<2>, Id>> landmarks;  ///< final estimate and true id
 };
@@ -168,10 +173,19 @@ inline SlamResult runSlam(const SlamData& data, const SlamRunOptions& o, bool re
     const AlignedScan current = alignScan(g, scan.ranges_m, ekf.robotMean());
     std::vector<PointFeature> features = extractPointFeatures(g, current, o.features);
     std::vector<Id> feature_truth;
+    std::vector<int> motion_class;  // of leg features (evaluation only), -1 otherwise
     for (const PointFeature& f : features) {
       feature_truth.push_back(majorityObject(scan, f.beams));
       ++result.features;
-      if (isLegId(feature_truth.back())) ++result.features_on_legs;
+      motion_class.push_back(-1);
+      if (!isLegId(feature_truth.back())) continue;
+      ++result.features_on_legs;
+      const Vec<2> now = *data.scene.world.objectPosition(feature_truth.back(), step.time_s);
+      const double moved = (now - *data.scene.world.objectPosition(feature_truth.back(), step.time_s - dt)).norm();
+      const double threshold = rangeThreshold(o.detector.matching.match_k, o.detector.matching.match_floor_m,
+                                              g.angle_increment_rad, f.z[0]);
+      motion_class.back() = moved < 1e-6 ? 0 : (moved < threshold ? 1 : 2);
+      ++result.leg_by_motion[static_cast<std::size_t>(motion_class.back())];
     }
 
     if (remove_moving) {
@@ -182,6 +196,7 @@ inline SlamResult runSlam(const SlamData& data, const SlamRunOptions& o, bool re
                    memory.end());
       std::vector<PointFeature> kept;
       std::vector<Id> kept_truth;
+      std::vector<int> kept_class;
       for (std::size_t i = 0; i < features.size(); ++i) {
         bool moving = false;
         for (const int b : features[i].beams) moving = moving || d.moving[static_cast<std::size_t>(b)] != 0;
@@ -191,13 +206,16 @@ inline SlamResult runSlam(const SlamData& data, const SlamRunOptions& o, bool re
         if (moving) {
           ++result.removed;
           if (isLegId(feature_truth[i])) ++result.removed_on_legs;
+          if (motion_class[i] >= 0) ++result.leg_removed_by_motion[static_cast<std::size_t>(motion_class[i])];
         } else {
           kept.push_back(std::move(features[i]));
           kept_truth.push_back(feature_truth[i]);
+          kept_class.push_back(motion_class[i]);
         }
       }
       features = std::move(kept);
       feature_truth = std::move(kept_truth);
+      motion_class = std::move(kept_class);
     }
 
     // Association with the map landmarks in reach (range + 1 m, field of view + 10 deg).
@@ -221,6 +239,7 @@ inline SlamResult runSlam(const SlamData& data, const SlamRunOptions& o, bool re
         paired.push_back({*pairing[i], z[i], R});
         if (isLegId(feature_truth[i])) {
           ++result.leg_observations_used;
+          ++result.leg_fused_by_motion[static_cast<std::size_t>(motion_class[i])];
           const Id landmark_truth = true_id_of.at(*pairing[i]);
           if (landmark_truth >= kFirstPoleId && landmark_truth < kFirstLegId) ++result.leg_into_pole;
         }
