@@ -5,16 +5,19 @@
 //   1. closest points (eq. 4.3, threshold eq. 4.4)          -> A_C, A_P; B_C, B_P
 //   2. Algorithm 2 (scan lines and ranges)                  -> M_C, O_C, N_C (and _P)
 //   3. continuous segments of M_C, O_C, A_C                  -> M_C^s, O_C^s, A_C^s;
-//      segments of M_C^s shorter than `min_seed_points` (2) are dropped here already: a
-//      single reading pushed out of its match by range noise would otherwise Join a whole
-//      wall of A_C^s in step 4 (not in the thesis, which filters by size only at the end)
+//      segments of M_C^s shorter than `min_seed_points` (2) are dropped here already unless
+//      they stand more than `seed_gap_factor` (3) dd_c in front of what the previous scan saw
+//      on their scan line: a single reading pushed out of its match by range noise would
+//      otherwise Join a whole wall of A_C^s in step 4, while the one-reading leading edge of
+//      an object sliding sideways (case 5) stands far in front of the old background (not
+//      in the thesis, which filters by size only at the end)
 //   4. Algorithm 3: if M_C^s is not empty,
 //        M_C^s <- Join(M_C^s, A_C^s), then M_C^s <- Join(M_C^s, O_C^s)   (cases 2 and 5)
 //   5. Algorithm 4: if M_C^s is empty and O_C^s is not, M_C^s <- O_C^s   (case 3), only
 //      when O_C^s holds at most `replace_max_o_segments` segments of the minimum size (the
 //      thesis: "only when one moving object is present ... detected from the number of
-//      segments in O_C^s")
-//      (then segments of M_C^s whose ends touch are merged: they are one continuous segment)
+//      segments in O_C^s"); then segments of M_C^s whose ends touch are merged (they are one
+//      continuous segment once the joins filled the gap between them)
 //   6. segments of M_C^s with fewer than `min_segment_points` readings are dropped
 //      (Sec. 4.4.1, false positives)
 //   7. each remaining segment is an object: the centroid of its convex hull and its bounding

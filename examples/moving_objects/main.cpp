@@ -649,7 +649,7 @@ int runReal(const Options& o) {
   }
   std::cout << "moving_objects --real: leg_tracker recording in " << r.dir << "\n"
             << "  " << r.scans << " scans; each compared with the one " << o.real_step << " earlier (mean dt "
-            << fixed(r.dt_s, 3) << " s): " << r.pairs << " detections runs\n"
+            << fixed(r.dt_s, 3) << " s): " << r.pairs << " scan pairs\n"
             << "  readings: " << fixed(100.0 * r.no_return_readings / r.readings, 1) << " % no return, "
             << fixed(100.0 * r.invalid_readings / r.readings, 2) << " % invalid (NaN)\n"
             << "  THERE IS NO GROUND TRUTH in this recording: the figures below are counts and a plausibility check.\n"
