@@ -97,6 +97,7 @@ struct Options {
   double slam_laps = 1.2;
   double memory_s = 1.0;
   bool no_slam = false;
+  bool slam_oracle = false;
   // real data
   bool real = false;
   std::string data = MOVING_OBJECTS_DEFAULT_DATA;
@@ -382,6 +383,8 @@ struct VariantStats {
   double position_sq = 0.0;
   long long removed = 0, removed_on_legs = 0, features_on_legs = 0, leg_used = 0;
   std::array<long long, 3> leg_by_motion{}, leg_removed_by_motion{}, leg_fused_by_motion{};
+  long long pole_features_near_leg = 0, pole_features_clear = 0, duplicates = 0;
+  double pole_near_leg_sq = 0.0, pole_clear_sq = 0.0;
   std::vector<double> per_seed_rmse;
 };
 
@@ -402,7 +405,8 @@ SlamReport runSlamStudy(const Options& o, const std::string& svg_path) {
   so.scene.laps = o.slam_laps;
   SlamReport report;
   for (const std::string& name : {std::string("without removal"), std::string("with removal"),
-                                  "with removal + " + fixed(o.memory_s, 1) + " s memory"}) {
+                                  "with removal + " + fixed(o.memory_s, 1) + " s memory", std::string("oracle removal (truth)")}) {
+    if (name == "oracle removal (truth)" && !o.slam_oracle) break;
     report.variants.emplace_back();
     report.variants.back().name = name;
   }
@@ -417,6 +421,7 @@ SlamReport runSlamStudy(const Options& o, const std::string& svg_path) {
     for (std::size_t v = 0; v < report.variants.size(); ++v) {
       SlamRunOptions run = so;
       run.memory_s = v == 2 ? o.memory_s : 0.0;
+      run.oracle = v == 3;
       const SlamResult r = runSlam(data, run, v > 0);
       VariantStats& st = report.variants[v];
       st.pole_sq += r.landmark_rmse_m * r.landmark_rmse_m * r.pole_landmarks;
@@ -432,13 +437,18 @@ SlamReport runSlamStudy(const Options& o, const std::string& svg_path) {
       st.removed_on_legs += r.removed_on_legs;
       st.features_on_legs += r.features_on_legs;
       st.leg_used += r.leg_observations_used;
+      st.pole_features_near_leg += r.pole_features_near_leg;
+      st.pole_features_clear += r.pole_features_clear;
+      st.pole_near_leg_sq += r.pole_near_leg_sq;
+      st.pole_clear_sq += r.pole_clear_sq;
+      st.duplicates += r.duplicate_pole_landmarks;
       for (std::size_t c = 0; c < 3; ++c) {
         st.leg_by_motion[c] += r.leg_by_motion[c];
         st.leg_removed_by_motion[c] += r.leg_removed_by_motion[c];
         st.leg_fused_by_motion[c] += r.leg_fused_by_motion[c];
       }
       st.per_seed_rmse.push_back(r.landmark_rmse_m);
-      if (s == 0) {
+      if (s == 0 && v < 3) {
         svg::SlamPanel panel;
         panel.title = report.variants[v].name + ": RMSE " + fixed(r.landmark_rmse_m * 100, 2) + " cm, " +
                       std::to_string(r.spurious_landmarks) + " spurious";
@@ -748,6 +758,7 @@ int runSimulation(const Options& o) {
         variants.push_back({{"name", v.name},
                             {"landmark_rmse_m", rms(v.pole_sq, v.poles)},
                             {"pole_landmarks_per_run", static_cast<double>(v.poles) / slam.seeds},
+                            {"duplicate_pole_landmarks_per_run", static_cast<double>(v.duplicates) / slam.seeds},
                             {"spurious_landmarks_per_run", static_cast<double>(v.spurious) / slam.seeds},
                             {"robot_nees_mean", v.nees_sum / slam.seeds},
                             {"robot_nees_fraction_inside_95", static_cast<double>(v.nees_inside) / v.nees_steps},
@@ -765,6 +776,11 @@ int runSimulation(const Options& o) {
       }
       int wins = 0;
       for (int s = 0; s < slam.seeds; ++s) wins += slam.variants[1].per_seed_rmse[s] < slam.variants[0].per_seed_rmse[s];
+      const VariantStats& v0 = slam.variants[0];
+      j["slam_pole_features"] = {{"near_a_leg", v0.pole_features_near_leg},
+                                 {"near_a_leg_rms_error_m", rms(v0.pole_near_leg_sq, v0.pole_features_near_leg)},
+                                 {"clear", v0.pole_features_clear},
+                                 {"clear_rms_error_m", rms(v0.pole_clear_sq, v0.pole_features_clear)}};
       j["slam"] = {{"seeds", slam.seeds}, {"steps", slam.steps}, {"path_length_m", slam.path_length_m},
                    {"people", o.slam_people}, {"poles", o.slam_poles}, {"nees_bounds_95", {nees_lo, nees_hi}},
                    {"seeds_with_removal_better", wins}, {"variants", variants}};
@@ -843,6 +859,13 @@ int runSimulation(const Options& o) {
       for (const long long n : v.leg_fused_by_motion) std::cout << " " << n;
       std::cout << "\n";
     }
+    const VariantStats& v0 = slam.variants[0];
+    std::cout << "   pole features with a leg within 0.3 m of the pole: " << v0.pole_features_near_leg << " of "
+              << v0.pole_features_near_leg + v0.pole_features_clear << ", RMS error of their centre "
+              << fixed(100.0 * rms(v0.pole_near_leg_sq, v0.pole_features_near_leg), 1) << " cm (others "
+              << fixed(100.0 * rms(v0.pole_clear_sq, v0.pole_features_clear), 1) << " cm); duplicate pole landmarks per run:";
+    for (const VariantStats& v : slam.variants) std::cout << " " << fixed(static_cast<double>(v.duplicates) / slam.seeds, 2);
+    std::cout << "\n";
     std::cout << "   robot NEES: mean over steps of one run, 95% bounds of one step [" << fixed(nees_lo, 2) << ", "
               << fixed(nees_hi, 2) << "]; removal lowers the pole-landmark error in " << wins << " of " << slam.seeds
               << " worlds\n";
@@ -900,6 +923,7 @@ int main(int argc, char** argv) {
   app.add_option("--slam-laps", o.slam_laps, "laps of the SLAM loop")->check(CLI::Range(0.05, 100.0))->capture_default_str();
   app.add_option("--memory", o.memory_s, "third SLAM variant: also drop features near objects detected in the last S seconds")->check(positive(false))->capture_default_str();
   app.add_flag("--no-slam", o.no_slam, "skip the SLAM comparison");
+  app.add_flag("--slam-oracle", o.slam_oracle, "diagnostic: a fourth SLAM variant that drops exactly the leg features (truth)");
   app.add_flag("--real", o.real, "run on the leg_tracker recording instead of the simulation");
   app.add_option("--data", o.data, "folder of the leg_tracker recording")->capture_default_str();
   app.add_option("--real-step", o.real_step, "compare each real scan with the one this many scans earlier")->check(CLI::Range(1, 1000))->capture_default_str();

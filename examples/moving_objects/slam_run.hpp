@@ -13,7 +13,8 @@
 //      a reading with a detected moving object; with `memory_s` > 0 also drop features
 //      within `memory_radius_m` of an object detected moving in the last memory_s seconds
 //      (a leg at rest between two swings does not move and is not detected; its other leg,
-//      swinging beside it a moment earlier, was);
+//      swinging beside it a moment earlier, was); `oracle` (a diagnostic) drops exactly the
+//      features the simulator says are legs, the best any removal could do;
 //   5. individual-compatibility nearest neighbour (chi-square gate) pairs features with the
 //      map; paired features are fused in one batched update; a feature whose NIS to every
 //      candidate exceeds a wider gate becomes a new landmark (InverseRangeBearing); the rest
@@ -67,6 +68,7 @@ struct SlamRunOptions {
   double new_landmark_probability = 0.9999;
   double memory_s = 0.0;
   double memory_radius_m = 0.5;
+  bool oracle = false;  ///< diagnostic: with removal, drop exactly the leg features (truth), no detector
 };
 
 /// The simulation both variants share.
@@ -116,6 +118,11 @@ struct SlamResult {
   /// all (stance), [1] less than the closest-point threshold dd_c (too slow to detect,
   /// eq. 4.5), [2] more. Per class: extracted, removed, fused into an existing landmark.
   std::array<long long, 3> leg_by_motion{}, leg_removed_by_motion{}, leg_fused_by_motion{};
+  /// Pole features (truth) whose pole has a leg within 0.3 m, and the rest: count and sum of
+  /// squared errors of the feature's centre against the pole's (before any removal).
+  long long pole_features_near_leg = 0, pole_features_clear = 0;
+  double pole_near_leg_sq = 0.0, pole_clear_sq = 0.0;
+  int duplicate_pole_landmarks = 0;  ///< pole-born landmarks beyond the first of their pole
   std::vector<Vec<2>> estimated_path;
   std::vector<std::pair<Vec<2>, Id>> landmarks;  ///< final estimate and true id
 };
@@ -178,7 +185,25 @@ inline SlamResult runSlam(const SlamData& data, const SlamRunOptions& o, bool re
       feature_truth.push_back(majorityObject(scan, f.beams));
       ++result.features;
       motion_class.push_back(-1);
-      if (!isLegId(feature_truth.back())) continue;
+      const Id truth = feature_truth.back();
+      if (truth >= kFirstPoleId && truth < kFirstLegId) {
+        const Vec<2>& pole = data.scene.poles[static_cast<std::size_t>(truth - kFirstPoleId)].position;
+        double nearest_leg = std::numeric_limits<double>::infinity();
+        for (const auto& [id, position] : data.scene.world.dynamicObjectPositions(step.time_s))
+          if (isLegId(id)) nearest_leg = std::min(nearest_leg, (position - pole).norm());
+        // The feature's centre from the true pose, so that only the extraction is judged.
+        const double a = step.true_pose[2] + f.z[1];
+        const Vec<2> centre = step.true_pose.head<2>() + f.z[0] * Vec<2>(std::cos(a), std::sin(a));
+        const double squared = (centre - pole).squaredNorm();
+        if (nearest_leg < 0.3) {
+          ++result.pole_features_near_leg;
+          result.pole_near_leg_sq += squared;
+        } else {
+          ++result.pole_features_clear;
+          result.pole_clear_sq += squared;
+        }
+      }
+      if (!isLegId(truth)) continue;
       ++result.features_on_legs;
       const Vec<2> now = *data.scene.world.objectPosition(feature_truth.back(), step.time_s);
       const double moved = (now - *data.scene.world.objectPosition(feature_truth.back(), step.time_s - dt)).norm();
@@ -200,7 +225,8 @@ inline SlamResult runSlam(const SlamData& data, const SlamRunOptions& o, bool re
       for (std::size_t i = 0; i < features.size(); ++i) {
         bool moving = false;
         for (const int b : features[i].beams) moving = moving || d.moving[static_cast<std::size_t>(b)] != 0;
-        if (o.memory_s > 0.0)
+        if (o.oracle) moving = isLegId(feature_truth[i]);
+        if (o.memory_s > 0.0 && !o.oracle)
           for (const Remembered& m : memory)
             moving = moving || (m.position - features[i].world).norm() <= o.memory_radius_m;
         if (moving) {
@@ -267,6 +293,7 @@ inline SlamResult runSlam(const SlamData& data, const SlamRunOptions& o, bool re
       (ekf.robotMean().head<2>() - data.truth.back().true_pose.head<2>()).norm();
   result.position_rmse_m = std::sqrt(squared_position_error / static_cast<double>(data.truth.size()));
   double squared = 0.0;
+  std::map<Id, int> per_pole;
   for (const sylva::LandmarkSlot& slot : ekf.slots()) {
     const Id truth = true_id_of.at(slot.id);
     const Vec<2> estimate = ekf.landmarkMean<sylva::Point2>(slot.id);
@@ -275,6 +302,7 @@ inline SlamResult runSlam(const SlamData& data, const SlamRunOptions& o, bool re
       const Vec<2>& pole = data.scene.poles[static_cast<std::size_t>(truth - kFirstPoleId)].position;
       squared += (estimate - pole).squaredNorm();
       ++result.pole_landmarks;
+      if (++per_pole[truth] > 1) ++result.duplicate_pole_landmarks;
     } else {
       ++result.spurious_landmarks;
     }
