@@ -90,6 +90,7 @@ struct Options {
   int min_seed = 2;
   int replace_max_o = 1;
   bool no_free_space = false;
+  double free_space_fraction = 0.8;
   // SLAM
   int slam_seeds = 10;
   int slam_people = 6;
@@ -125,6 +126,7 @@ DetectorOptions detectorOptions(const Options& o) {
   d.matching.match_k = o.match_k;
   d.matching.match_floor_m = o.match_floor_m;
   d.matching.free_space = !o.no_free_space;
+  d.matching.free_space_max_range_fraction = o.free_space_fraction;
   d.segments.k = o.segment_k;
   d.segments.floor_m = o.segment_floor_m;
   d.min_segment_points = o.min_points;
@@ -917,6 +919,10 @@ int main(int argc, char** argv) {
   app.add_option("--min-seed", o.min_seed, "minimum readings of an M_C^s segment before the joins")->check(CLI::Range(1, 10000))->capture_default_str();
   app.add_option("--replace-max-o", o.replace_max_o, "Algorithm 4 only with at most this many O_C^s segments (0: never)")->check(CLI::Range(0, 100000))->capture_default_str();
   app.add_flag("--no-free-space", o.no_free_space, "the thesis' Algorithm 2 without the free-space extension");
+  app.add_option("--free-space-fraction", o.free_space_fraction,
+                 "trust 'no return' as free space only for readings within this share of the maximum range")
+      ->check(CLI::Range(0.01, 1.0))
+      ->capture_default_str();
   app.add_option("--slam-seeds", o.slam_seeds, "worlds of the SLAM comparison")->check(CLI::Range(1, 100000))->capture_default_str();
   app.add_option("--slam-people", o.slam_people, "walking people in the SLAM hall")->check(CLI::Range(0, 1000))->capture_default_str();
   app.add_option("--slam-poles", o.slam_poles, "poles (landmarks) in the SLAM hall")->check(CLI::Range(1, 1000))->capture_default_str();
