@@ -27,6 +27,8 @@
 
 namespace moving_objects {
 
+using sylva::Id;
+
 struct PointScores {
   int reported = 0;            ///< readings the detector calls moving
   int reported_on_moving = 0;  ///< ... of which are on a moving object
