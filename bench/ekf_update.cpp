@@ -51,6 +51,8 @@
 #include "sylva/sim/random.hpp"
 #include "sylva/testing/dense_reference_ekf.hpp"
 
+#include "common/build_context.hpp"
+
 namespace {
 
 using sylva::Id;
@@ -321,7 +323,7 @@ void BM_StepNaive(benchmark::State& state) {
 // ------------------------------------------------------------------ registration
 
 /// Map sizes. 500..1000 is where the covariance (8-32 MB) no longer fits in a core's L2,
-/// the range over which docs/benchmarks.md fits the scaling exponent.
+/// the range over which docs/update-benchmarks.md fits the scaling exponent.
 const std::vector<int> kLandmarkCounts = {50, 100, 200, 300, 500, 700, 1000};
 
 /// Every family runs each size for at least 0.3 s per repetition. The O(n^3) families need
@@ -340,47 +342,11 @@ BENCHMARK(BM_StepEfficient)->Apply(sizes);
 BENCHMARK(BM_StepBatched)->Apply(sizes);
 BENCHMARK(BM_StepNaive)->Apply(sizes);
 
-/// "model name" of the first processor in /proc/cpuinfo, or "unknown".
-std::string cpuModel() {
-  std::ifstream cpuinfo("/proc/cpuinfo");
-  std::string line;
-  while (std::getline(cpuinfo, line)) {
-    if (line.rfind("model name", 0) == 0) {
-      const auto colon = line.find(':');
-      if (colon != std::string::npos) return line.substr(line.find_first_not_of(" \t", colon + 1));
-    }
-  }
-  return "unknown";
-}
-
-// Set by bench/CMakeLists.txt.
-#ifndef SYLVA_BENCH_CXX_FLAGS
-#define SYLVA_BENCH_CXX_FLAGS "unknown"
-#endif
-#ifndef SYLVA_BENCH_BUILD_TYPE
-#define SYLVA_BENCH_BUILD_TYPE "unknown"
-#endif
-
-}  // namespace
-
 int main(int argc, char** argv) {
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
-  // Recorded in the JSON context so that docs/benchmarks.md can name the machine and build.
-  benchmark::AddCustomContext("cpu_model", cpuModel());
-#if defined(__clang__)
-  benchmark::AddCustomContext("compiler", std::string("clang ") + __clang_version__);
-#elif defined(__GNUC__)
-  benchmark::AddCustomContext("compiler", std::string("gcc ") + __VERSION__);
-#else
-  benchmark::AddCustomContext("compiler", "unknown");
-#endif
-  benchmark::AddCustomContext("cxx_flags", SYLVA_BENCH_CXX_FLAGS);
-  benchmark::AddCustomContext("build_type", SYLVA_BENCH_BUILD_TYPE);
-  benchmark::AddCustomContext("eigen_version", std::to_string(EIGEN_WORLD_VERSION) + "." +
-                                                   std::to_string(EIGEN_MAJOR_VERSION) + "." +
-                                                   std::to_string(EIGEN_MINOR_VERSION));
-  benchmark::AddCustomContext("eigen_simd", Eigen::SimdInstructionSetsInUse());
+  // Recorded in the JSON context so that the reports can name the machine and build.
+  sylva_bench::addBuildContext();
   benchmark::AddCustomContext("observations_per_step", std::to_string(kVisible));
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();

@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
-"""Turns the Google Benchmark JSON of bench_ekf_update into docs/benchmarks.md and an SVG plot.
+"""Turns the Google Benchmark JSON of bench_ekf_update into docs/update-benchmarks.md and an SVG plot.
 
 Usage:
-    scripts/bench_report.py BENCH.json [--out docs/benchmarks.md] [--svg docs/benchmarks.svg]
+    scripts/bench_report.py BENCH.json [--out docs/update-benchmarks.md] [--svg docs/update-benchmarks.svg]
                             [--time cpu|real]
 
 The JSON must come from `bench_ekf_update --benchmark_format=json --benchmark_out=...` with
@@ -222,8 +222,8 @@ def svg_plot(best, sizes, path, time_label):
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("json", help="Google Benchmark JSON output of bench_ekf_update")
-    parser.add_argument("--out", default="docs/benchmarks.md")
-    parser.add_argument("--svg", default="docs/benchmarks.svg")
+    parser.add_argument("--out", default="docs/update-benchmarks.md")
+    parser.add_argument("--svg", default="docs/update-benchmarks.svg")
     parser.add_argument("--time", choices=("cpu", "real"), default="cpu",
                         help="cpu_time (default: not inflated while the process waits for a "
                              "core) or real_time")

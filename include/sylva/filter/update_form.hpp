@@ -10,7 +10,7 @@
 ///   semi-definite even for a sub-optimal gain. It is computed in product form on the full
 ///   matrix: mirror the lower triangle, A = (I - K H) P, then A - (A H^T) K^T + K R K^T, i.e.
 ///   several full passes over P instead of half of one (7-10x the symmetric form's time at
-///   n = 100..2000 in docs/benchmarks.md).
+///   n = 100..2000 in docs/update-benchmarks.md).
 
 namespace sylva {
 

@@ -1,0 +1,185 @@
+/// @file
+/// One step of 2D EKF-SLAM against the map size N, beside this machine's bounds measured in
+/// the same binary and run. The scenario is bench/scenario/circle_world.hpp: a robot on a
+/// circle among N landmarks at constant density (about 12 in view per step), odometry
+/// (`sylva::Odometry2D`) and range-bearing measurements with known ids. Lap 1 builds the map
+/// (state dimension n = 3 + 2N); lap 2 is timed.
+///
+/// Families (the argument is N):
+///   BM_StepBatched            `Ekf<Odometry2D, Point2>`: predict, then all of the step's
+///                             observations in one batched update (`Fusion::kBatched`)
+///   BM_StepSequential         the same filter, one update per observation
+///                             (`Fusion::kSequential`)
+///   BM_StepBatchedUnusedTypes `Ekf<Odometry2D, Point2, Point3, TreeXYZR>` on the same steps:
+///                             the extra landmark types are present but unused, so any
+///                             difference to BM_StepBatched is the price of generality
+///   BM_BoundFullReadWrite     reads and writes every entry of an n x n matrix of doubles once,
+///                             in place: the full-matrix bound of an update that touches all of P
+///   BM_BoundLowerReadWrite    the same on the lower triangle only (half the bytes)
+///   BM_GemmPeak               C += A B, 512 x 512 x 512 (argument unused): the compute peak,
+///                             counter gflops
+///
+/// One iteration of a step family is one step of lap 2: iteration i runs step i mod K of
+/// lap 2 (K = min(lap length, 40)), starting again from a copy of the end-of-lap-1 filter
+/// every K iterations (the copy is outside the timing). The end-of-lap-1 filter is built once
+/// per N and filter type, outside the timing. Counters: n (state dimension) and observations
+/// per step.
+
+#include <benchmark/benchmark.h>
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <map>
+#include <memory>
+#include <utility>
+
+#include "common/build_context.hpp"
+#include "scenario/sylva_circle_slam.hpp"
+#include "sylva/landmarks/point3.hpp"
+#include "sylva/landmarks/tree_xyzr.hpp"
+
+namespace {
+
+using sylva_bench::CircleWorld;
+using sylva_bench::CircleWorldConfig;
+using sylva_bench::SylvaStep;
+
+using PointFilter = sylva::Ekf<sylva::Odometry2D, sylva::Point2>;
+using MixedFilter = sylva::Ekf<sylva::Odometry2D, sylva::Point2, sylva::Point3, sylva::TreeXYZR>;
+
+constexpr int kMaxTimedSteps = 40;
+
+/// The world of N landmarks, its steps in sylva's types and where lap 2 starts.
+struct World {
+  explicit World(int landmarks) : world(config(landmarks)), steps(sylva_bench::sylvaSteps(world)) {}
+  static CircleWorldConfig config(int landmarks) {
+    CircleWorldConfig c;
+    c.landmarks = landmarks;
+    return c;
+  }
+  CircleWorld world;
+  std::vector<SylvaStep> steps;
+};
+
+const World& worldOf(int landmarks) {
+  static std::map<int, std::unique_ptr<World>> cache;
+  auto& slot = cache[landmarks];
+  if (!slot) slot = std::make_unique<World>(landmarks);
+  return *slot;
+}
+
+/// The filter at the end of lap 1 (batched fusion while the map is built).
+template <typename Filter>
+const Filter& endOfLapOne(int landmarks) {
+  static std::map<int, std::unique_ptr<Filter>> cache;
+  auto& slot = cache[landmarks];
+  if (!slot) {
+    const World& w = worldOf(landmarks);
+    Filter ekf(w.world.initialPose(), sylva::Mat<3, 3>::Zero());
+    ekf.reserve(sylva::Point2::kDim * landmarks);
+    sylva_bench::StepScratch scratch;
+    const auto noise = w.world.odometryNoise();
+    for (int k = 0; k < w.world.lapBegin(1); ++k)
+      sylva_bench::runStep(ekf, w.steps[static_cast<std::size_t>(k)], noise, w.world.config().dt_s,
+                           sylva::Fusion::kBatched, scratch);
+    slot = std::make_unique<Filter>(std::move(ekf));
+  }
+  return *slot;
+}
+
+template <typename Filter>
+void timeSteps(benchmark::State& state, sylva::Fusion fusion) {
+  const int landmarks = static_cast<int>(state.range(0));
+  const World& w = worldOf(landmarks);
+  const Filter& start = endOfLapOne<Filter>(landmarks);
+  const int first = w.world.lapBegin(1);
+  const int timed = std::min(kMaxTimedSteps, w.world.stepsPerLap());
+  const auto noise = w.world.odometryNoise();
+  const double dt = w.world.config().dt_s;
+  Filter ekf = start;
+  sylva_bench::StepScratch scratch;
+  int k = 0;
+  long observations = 0;
+  for (auto _ : state) {
+    if (k == timed) {
+      state.PauseTiming();
+      ekf = start;
+      k = 0;
+      state.ResumeTiming();
+    }
+    const SylvaStep& step = w.steps[static_cast<std::size_t>(first + k)];
+    sylva_bench::runStep(ekf, step, noise, dt, fusion, scratch);
+    observations += static_cast<long>(step.observations.size());
+    ++k;
+    benchmark::ClobberMemory();
+  }
+  state.counters["N"] = landmarks;
+  state.counters["n"] = start.dim();
+  state.counters["observations_per_step"] =
+      static_cast<double>(observations) / static_cast<double>(std::max<benchmark::IterationCount>(1, state.iterations()));
+}
+
+void BM_StepBatched(benchmark::State& state) { timeSteps<PointFilter>(state, sylva::Fusion::kBatched); }
+void BM_StepSequential(benchmark::State& state) { timeSteps<PointFilter>(state, sylva::Fusion::kSequential); }
+void BM_StepBatchedUnusedTypes(benchmark::State& state) { timeSteps<MixedFilter>(state, sylva::Fusion::kBatched); }
+
+/// In-place read-modify-write of an n x n matrix (all of it, or its lower triangle): the
+/// bytes an update of P must move at least once. The factor alternates so the values stay put.
+void timeReadWrite(benchmark::State& state, bool lower_only) {
+  const int n = 3 + 2 * static_cast<int>(state.range(0));
+  Eigen::MatrixXd P = Eigen::MatrixXd::Constant(n, n, 1.0);
+  double factor = 1.0 + 1e-9;
+  for (auto _ : state) {
+    if (lower_only) {
+      for (int j = 0; j < n; ++j) P.col(j).tail(n - j) *= factor;
+    } else {
+      P *= factor;
+    }
+    factor = 1.0 / factor;
+    benchmark::ClobberMemory();
+  }
+  const double bytes = 2.0 * sizeof(double) * (lower_only ? 0.5 * n * (n + 1.0) : double(n) * n);
+  state.counters["N"] = static_cast<double>(state.range(0));
+  state.counters["n"] = n;
+  state.counters["bytes_per_second"] = benchmark::Counter(bytes, benchmark::Counter::kIsIterationInvariantRate);
+  benchmark::DoNotOptimize(P.data());
+}
+
+void BM_BoundFullReadWrite(benchmark::State& state) { timeReadWrite(state, false); }
+void BM_BoundLowerReadWrite(benchmark::State& state) { timeReadWrite(state, true); }
+
+void BM_GemmPeak(benchmark::State& state) {
+  constexpr int kSize = 512;
+  const Eigen::MatrixXd A = Eigen::MatrixXd::Constant(kSize, kSize, 1e-3);
+  const Eigen::MatrixXd B = Eigen::MatrixXd::Constant(kSize, kSize, 1e-3);
+  Eigen::MatrixXd C = Eigen::MatrixXd::Zero(kSize, kSize);
+  for (auto _ : state) {
+    C.noalias() += A * B;
+    benchmark::ClobberMemory();
+  }
+  state.counters["gflops"] =
+      benchmark::Counter(2e-9 * kSize * kSize * kSize, benchmark::Counter::kIsIterationInvariantRate);
+  benchmark::DoNotOptimize(C.data());
+}
+
+void mapSizes(benchmark::internal::Benchmark* b) {
+  for (int landmarks : {50, 100, 200, 500, 1000, 2000}) b->Arg(landmarks);
+}
+
+BENCHMARK(BM_StepBatched)->Apply(mapSizes)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_StepSequential)->Apply(mapSizes)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_StepBatchedUnusedTypes)->Apply(mapSizes)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_BoundFullReadWrite)->Apply(mapSizes)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_BoundLowerReadWrite)->Apply(mapSizes)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_GemmPeak)->Unit(benchmark::kMicrosecond);
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  sylva_bench::addBuildContext();
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}
