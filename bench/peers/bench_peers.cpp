@@ -21,16 +21,20 @@
 /// the step's action and sensory frame, built beforehand; for sylva, `runPeerStep` with the
 /// step's observations, converted beforehand.
 ///
-/// Timing: setup (not timed) runs lap 1 with sylva batched to build the map and keeps that
-/// state (the "snapshot"); MRPT gets the same state through MrptPeer::setState. Each
-/// iteration restores the snapshot (not timed), then times --peers_steps consecutive lap-2
-/// steps (default 10) with a steady clock (manual time). So every iteration starts from the
-/// same state and runs the same steps. The reported time of an iteration is those steps
-/// together; the counter ms_per_step is the mean time of one step.
+/// Timing: the timed window is --peers_steps (default 10) consecutive lap-2 steps, chosen as
+/// the window whose mean number of measurements is closest to the lap's mean (about 12; the
+/// choice depends only on the world, never on timings), so every N is timed on typical steps.
+/// Setup (not timed) runs sylva batched from the start up to the window (lap 1 builds the
+/// map) and keeps that state (the "snapshot"); MRPT gets the same state through
+/// MrptPeer::setState. Each iteration restores the snapshot (not timed), then times the
+/// window's steps with a steady clock (manual time), so every iteration starts from the same
+/// state and runs the same steps. The reported time of an iteration is the whole window; the
+/// counter ms_per_step is the mean time of one step, obs_per_step the window's mean number of
+/// measurements.
 ///
 /// Checks (a benchmark that fails one reports an error instead of a time):
 ///   - before anything at a given N is timed, MRPT kfEKFNaive and sylva batched run the first
-///     lap-2 step from the snapshot, as do MRPT kfEKFAlaDavison and sylva's replica of it,
+///     step of the window from the snapshot, as do MRPT kfEKFAlaDavison and sylva's replica of it,
 ///     and their states must agree (mean to 1e-9, covariance to 1e-9 of max |P|);
 ///   - after every timed iteration, the filter's mean must match the reference run of the same
 ///     steps (sylva batched for the naive pair, sylva's AlaDavison replica for the other pair,
@@ -41,14 +45,17 @@
 ///   --peers_steps=10                          lap-2 steps per timed iteration
 ///   --peers_mrpt_max_n=2000                   skip MRPT families above this N
 ///   --peers_naive_max_n=2000                  skip mrpt_naive above this N (O(n^3) per step)
-///   --peers_min_time=0.5                      minimum timed seconds per benchmark
+/// Google Benchmark's --benchmark_min_time applies to the timed (manual) time; a benchmark
+/// whose first iteration exceeds it (MRPT at large N) runs that one iteration only.
 
 #include <benchmark/benchmark.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <ctime>
 #include <memory>
 #include <sstream>
 #include <string>
@@ -82,7 +89,6 @@ struct Options {
   int steps = 10;
   int mrpt_max_n = 2000;
   int naive_max_n = 2000;
-  double min_time_s = 0.5;
 };
 Options g_options;
 
@@ -108,8 +114,8 @@ struct Reference {
 /// Everything for one N, built once (one N at a time is kept: the maps are large).
 struct Setup {
   explicit Setup(int landmarks) : world(makeConfig(landmarks)), steps(sylva_bench::sylvaSteps(world)) {
-    first = world.lapBegin(1);
     count = std::min(g_options.steps, world.stepsPerLap());
+    first = typicalWindow(world, count);
     auto ekf = sylva_bench::makeOdometrySlam(world);
     sylva_peers::PeerScratch scratch;
     for (int k = 0; k < first; ++k)
@@ -123,6 +129,28 @@ struct Setup {
     measurements_per_step = static_cast<double>(measured) / count;
     for (SylvaFusion f : {SylvaFusion::kBatched, SylvaFusion::kAlaDavison, SylvaFusion::kSequential})
       references[static_cast<int>(f)] = reference(f);
+  }
+
+  /// First step of the `count` consecutive lap-2 steps whose mean number of measurements is
+  /// closest to the lap's mean (the earliest such window).
+  static int typicalWindow(const sylva_bench::CircleWorld& world, int count) {
+    const double target = world.meanMeasurementsPerStep(1);
+    const auto size = [&](int k) { return static_cast<double>(world.steps()[static_cast<std::size_t>(k)].measurements.size()); };
+    const int begin = world.lapBegin(1);
+    const int last = world.lapBegin(2) - count;
+    double sum = 0.0;
+    for (int k = begin; k < begin + count; ++k) sum += size(k);
+    int best = begin;
+    double best_gap = std::abs(sum / count - target);
+    for (int w = begin + 1; w <= last; ++w) {
+      sum += size(w + count - 1) - size(w - 1);
+      const double gap = std::abs(sum / count - target);
+      if (gap < best_gap - 1e-12) {
+        best_gap = gap;
+        best = w;
+      }
+    }
+    return best;
   }
 
   static sylva_bench::CircleWorldConfig makeConfig(int landmarks) {
@@ -168,7 +196,7 @@ struct Setup {
       peer.setState(snapshot_state);
       peer.step(first);
       const auto d = sylva_peers::compareStates(references[static_cast<int>(fusion)].after_first, peer.state());
-      std::fprintf(stderr, "peers: N = %d, first lap-2 step, MRPT %s vs sylva %s: %s\n", world.landmarkCount(),
+      std::fprintf(stderr, "peers: N = %d, step %d, MRPT %s vs sylva %s: %s\n", world.landmarkCount(), first,
                    sylva_peers::toString(method), sylva_peers::toString(fusion), d.summary().c_str());
       if (!d.same_landmarks || d.max_mean > kMeanTolerance || d.max_cov_relative > kCovarianceTolerance)
         os << "MRPT " << sylva_peers::toString(method) << " and sylva " << sylva_peers::toString(fusion)
@@ -201,16 +229,24 @@ Setup& setupFor(int landmarks) {
   return *current;
 }
 
-void setCounters(benchmark::State& state, const Setup& s, double total_s, std::int64_t iterations) {
+void setCounters(benchmark::State& state, const Setup& s, double total_s, double total_cpu_s, std::int64_t iterations) {
   state.counters["N"] = s.world.landmarkCount();
   state.counters["state_dim"] = s.snapshot->dim();
   state.counters["obs_per_step"] = s.measurements_per_step;
   state.counters["steps_per_iteration"] = s.count;
-  state.counters["ms_per_step"] =
-      iterations > 0 ? 1e3 * total_s / (static_cast<double>(iterations) * s.count) : 0.0;
+  state.counters["first_step"] = s.first;
+  const double steps = static_cast<double>(iterations) * s.count;
+  state.counters["ms_per_step"] = iterations > 0 ? 1e3 * total_s / steps : 0.0;
+  // Processor time of the same steps: on a shared machine it excludes the time the process
+  // waited for a core (but not memory contention).
+  state.counters["cpu_ms_per_step"] = iterations > 0 ? 1e3 * total_cpu_s / steps : 0.0;
 }
 
 double seconds(std::chrono::steady_clock::duration d) { return std::chrono::duration<double>(d).count(); }
+
+double cpuSeconds(std::clock_t begin, std::clock_t end) {
+  return static_cast<double>(end - begin) / CLOCKS_PER_SEC;
+}
 
 void runBenchmark(benchmark::State& state, Family family, int landmarks) {
   Setup& s = setupFor(landmarks);
@@ -233,20 +269,25 @@ void runBenchmark(benchmark::State& state, Family family, int landmarks) {
   Eigen::VectorXd mean;
   std::vector<sylva::Id> ids;
   double total_s = 0.0;
+  double total_cpu_s = 0.0;
   for (auto _ : state) {
     if (peer) {
       peer->setState(s.snapshot_state);
+      const std::clock_t c0 = std::clock();
       const auto t0 = std::chrono::steady_clock::now();
       for (int k = s.first; k < s.first + s.count; ++k) peer->step(k);
       const double dt = seconds(std::chrono::steady_clock::now() - t0);
+      total_cpu_s += cpuSeconds(c0, std::clock());
       state.SetIterationTime(dt);
       total_s += dt;
       peer->mean(mean, ids);
     } else {
       ekf = *s.snapshot;
+      const std::clock_t c0 = std::clock();
       const auto t0 = std::chrono::steady_clock::now();
       for (int k = s.first; k < s.first + s.count; ++k) s.runStep(ekf, k, fusion, scratch);
       const double dt = seconds(std::chrono::steady_clock::now() - t0);
+      total_cpu_s += cpuSeconds(c0, std::clock());
       state.SetIterationTime(dt);
       total_s += dt;
       mean = ekf.mean();
@@ -260,7 +301,7 @@ void runBenchmark(benchmark::State& state, Family family, int landmarks) {
       break;
     }
   }
-  setCounters(state, s, total_s, state.iterations());
+  setCounters(state, s, total_s, total_cpu_s, state.iterations());
 }
 
 std::vector<int> parseSizes(const char* text) {
@@ -295,8 +336,6 @@ void parseOptions(int& argc, char** argv) {
       g_options.mrpt_max_n = std::atoi(v3);
     } else if (const char* v4 = value("--peers_naive_max_n")) {
       g_options.naive_max_n = std::atoi(v4);
-    } else if (const char* v5 = value("--peers_min_time")) {
-      g_options.min_time_s = std::atof(v5);
     } else if (std::strncmp(a, "--peers_", 8) == 0) {
       std::fprintf(stderr, "bench_peers: unknown flag %s\n", a);
       std::exit(2);
@@ -321,8 +360,7 @@ int main(int argc, char** argv) {
       const std::string name = std::string(familyName(f)) + "/" + std::to_string(n);
       benchmark::RegisterBenchmark(name.c_str(), runBenchmark, f, n)
           ->UseManualTime()
-          ->Unit(benchmark::kMillisecond)
-          ->MinTime(g_options.min_time_s);
+          ->Unit(benchmark::kMillisecond);
     }
   }
   benchmark::AddCustomContext("peers_variant", SYLVA_PEERS_VARIANT);

@@ -1,0 +1,65 @@
+#!/usr/bin/env bash
+# sylva against MRPT's EKF-SLAM (mrpt::slam::CRangeBearingKFSLAM2D) on the circle world
+# (bench/peers/README.md):
+#   1. installs libmrpt-dev (and the other build dependencies) if missing (apt-get),
+#   2. configures a Release build with the benchmarks (default build dir: build-peers) and
+#      builds peers_agreement, bench_peers_native and bench_peers_baseline,
+#   3. runs the agreement check (sylva and MRPT on the same two laps at N = 50 and 200; stops
+#      here if they disagree),
+#   4. runs bench_peers_native (every family: MRPT kfEKFNaive and kfEKFAlaDavison, sylva's
+#      three fusions built with -march=native), then bench_peers_baseline (sylva's families
+#      built for baseline x86-64; MRPT is the same library in both, so it runs once),
+#      JSON to BUILD_DIR/bench/peers_native.json and peers_baseline.json,
+#   5. prints the step times and the ratios at each N (bench/peers/peer_report.py), also
+#      written to BUILD_DIR/bench/peers.md.
+#
+# Usage: scripts/run_peer_benchmarks.sh [BUILD_DIR]
+# Environment:
+#   JOBS         parallel build jobs (default 2)
+#   SIZES        map sizes N (default 50,100,200,500,1000,2000)
+#   STEPS        lap-2 steps per timed iteration (default 10)
+#   NAIVE_MAX_N  largest N for MRPT kfEKFNaive (default 2000)
+#   REPETITIONS  repetitions per benchmark (default 1; the report uses medians)
+#   BENCH_ARGS   extra Google Benchmark flags for both runs
+#
+# Runtime: about 10 minutes on a 2-core machine with the defaults, most of it MRPT
+# kfEKFNaive at N = 2000 (O(n^3) per step, about 10 s per step here: one iteration of STEPS
+# steps plus one checked step, i.e. close to two minutes). NAIVE_MAX_N=1000 saves that.
+set -euo pipefail
+
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+build_dir="${1:-${root}/build-peers}"
+jobs="${JOBS:-2}"
+sizes="${SIZES:-50,100,200,500,1000,2000}"
+steps="${STEPS:-10}"
+naive_max_n="${NAIVE_MAX_N:-2000}"
+repetitions="${REPETITIONS:-1}"
+out_dir="${build_dir}/bench"
+
+# shellcheck source=lib/install_packages.sh
+source "${root}/scripts/lib/install_packages.sh"
+sylva_install_packages cmake g++ libeigen3-dev libbenchmark-dev libmrpt-dev python3
+
+cmake -S "${root}" -B "${build_dir}" -DCMAKE_BUILD_TYPE=Release \
+  -DSYLVA_BUILD_BENCHMARKS=ON -DSYLVA_BUILD_TESTS=OFF -DSYLVA_BUILD_EXAMPLES=OFF
+cmake --build "${build_dir}" -j "${jobs}" --target peers_agreement bench_peers_native bench_peers_baseline
+peers="${build_dir}/bench/peers"
+
+echo "==> agreement of sylva and MRPT (two laps, N = 50 and 200)"
+"${peers}/peers_agreement" 50 200
+
+mkdir -p "${out_dir}"
+common=(--peers_sizes="${sizes}" --peers_steps="${steps}" --peers_naive_max_n="${naive_max_n}"
+        --benchmark_repetitions="${repetitions}" --benchmark_context=nproc="$(nproc)")
+echo "==> benchmark, sylva built with -march=native (and MRPT)"
+# shellcheck disable=SC2086  # BENCH_ARGS is a list of flags on purpose
+"${peers}/bench_peers_native" "${common[@]}" \
+  --benchmark_out="${out_dir}/peers_native.json" --benchmark_out_format=json ${BENCH_ARGS:-}
+echo "==> benchmark, sylva built for baseline x86-64"
+# shellcheck disable=SC2086
+"${peers}/bench_peers_baseline" "${common[@]}" --benchmark_filter='^sylva_' \
+  --benchmark_out="${out_dir}/peers_baseline.json" --benchmark_out_format=json ${BENCH_ARGS:-}
+
+echo
+python3 "${root}/bench/peers/peer_report.py" "${out_dir}/peers_native.json" "${out_dir}/peers_baseline.json" \
+  --out "${out_dir}/peers.md" --command "scripts/run_peer_benchmarks.sh"
