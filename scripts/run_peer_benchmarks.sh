@@ -19,12 +19,13 @@
 #   SIZES        map sizes N (default 50,100,200,500,1000,2000)
 #   STEPS        lap-2 steps per timed iteration (default 10)
 #   NAIVE_MAX_N  largest N for MRPT kfEKFNaive (default 2000)
-#   REPETITIONS  repetitions per benchmark (default 1; the report uses medians)
+#   REPETITIONS  repetitions per benchmark (default 3; the report uses their medians)
 #   BENCH_ARGS   extra Google Benchmark flags for both runs
 #
-# Runtime: about 10 minutes on a 2-core machine with the defaults, most of it MRPT
-# kfEKFNaive at N = 2000 (O(n^3) per step, about 10 s per step here: one iteration of STEPS
-# steps plus one checked step, i.e. close to two minutes). NAIVE_MAX_N=1000 saves that.
+# Runtime: about 10 minutes on a 2-core machine with the defaults (plus the first build), more
+# than half of it MRPT kfEKFNaive at N = 2000: O(n^3), several seconds per step, so one
+# iteration of STEPS steps per repetition is all it gets (plus one checked step).
+# NAIVE_MAX_N=1000 leaves it out.
 set -euo pipefail
 
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -33,7 +34,7 @@ jobs="${JOBS:-2}"
 sizes="${SIZES:-50,100,200,500,1000,2000}"
 steps="${STEPS:-10}"
 naive_max_n="${NAIVE_MAX_N:-2000}"
-repetitions="${REPETITIONS:-1}"
+repetitions="${REPETITIONS:-3}"
 out_dir="${build_dir}/bench"
 
 # shellcheck source=lib/install_packages.sh
