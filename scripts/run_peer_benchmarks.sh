@@ -21,6 +21,12 @@
 #   NAIVE_MAX_N  largest N for MRPT kfEKFNaive (default 2000)
 #   REPETITIONS  repetitions per benchmark (default 3; the report uses their medians)
 #   BENCH_ARGS   extra Google Benchmark flags for both runs
+#   CXX          the compiler for sylva's side, read at the first configure of BUILD_DIR
+#                (e.g. CXX=clang++ scripts/run_peer_benchmarks.sh build-peers-clang): sylva's
+#                time is mostly Eigen's dense kernels, whose speed depends on the compiler
+#                (on the 2-core AVX-512 machine these were written on, clang++ 14's build
+#                ran the batched step at N = 1000 about twice as fast as g++ 12's); the
+#                report names the compiler.
 #
 # Runtime: about 10 minutes on a 2-core machine with the defaults (plus the first build), more
 # than half of it MRPT kfEKFNaive at N = 2000: O(n^3), several seconds per step, so one

@@ -88,7 +88,8 @@ def main():
     out = []
     out.append("# sylva vs MRPT CRangeBearingKFSLAM2D: time per SLAM step\n")
     out.append(f"Command: `{args.command}`. {ctx.get('mrpt_version', 'MRPT ?')} (Debian's build); "
-               f"sylva native: `{ctx.get('peers_cxx_flags', '?')}`"
+               f"sylva compiled by {ctx.get('peers_compiler', '?').strip()}, "
+               f"native: `{ctx.get('peers_cxx_flags', '?')}`"
                + (f", baseline: `{bctx.get('peers_cxx_flags', '?')}`" if bctx else "") + ". "
                f"Host: {ctx.get('host_name', '?')}, {ctx.get('num_cpus', '?')} CPUs at "
                f"{ctx.get('mhz_per_cpu', '?')} MHz, run {ctx.get('date', '?')}; "
