@@ -6,10 +6,11 @@
 #      builds peers_agreement, bench_peers_native and bench_peers_baseline,
 #   3. runs the agreement check (sylva and MRPT on the same two laps at N = 50 and 200; stops
 #      here if they disagree),
-#   4. runs bench_peers_native (every family: MRPT kfEKFNaive and kfEKFAlaDavison, sylva's
-#      three fusions built with -march=native), then bench_peers_baseline (sylva's families
-#      built for baseline x86-64; MRPT is the same library in both, so it runs once),
-#      JSON to BUILD_DIR/bench/peers_native.json and peers_baseline.json,
+#   4. for each N: runs bench_peers_native (every family: MRPT kfEKFNaive and
+#      kfEKFAlaDavison, sylva's three fusions built with -march=native), then
+#      bench_peers_baseline (sylva's families built for baseline x86-64; MRPT is the same
+#      library in both, so it runs once), JSON to BUILD_DIR/bench/peers_native_<N>.json and
+#      peers_baseline_<N>.json,
 #   5. prints the step times and the ratios at each N (bench/peers/peer_report.py), also
 #      written to BUILD_DIR/bench/peers.md.
 #
@@ -56,17 +57,27 @@ echo "==> agreement of sylva and MRPT (two laps, N = 50 and 200)"
 "${peers}/peers_agreement" 50 200
 
 mkdir -p "${out_dir}"
-common=(--peers_sizes="${sizes}" --peers_steps="${steps}" --peers_naive_max_n="${naive_max_n}"
-        --benchmark_repetitions="${repetitions}" --benchmark_context=nproc="$(nproc)")
-echo "==> benchmark, sylva built with -march=native (and MRPT)"
-# shellcheck disable=SC2086  # BENCH_ARGS is a list of flags on purpose
-"${peers}/bench_peers_native" "${common[@]}" \
-  --benchmark_out="${out_dir}/peers_native.json" --benchmark_out_format=json ${BENCH_ARGS:-}
-echo "==> benchmark, sylva built for baseline x86-64"
-# shellcheck disable=SC2086
-"${peers}/bench_peers_baseline" "${common[@]}" --benchmark_filter='^sylva_' \
-  --benchmark_out="${out_dir}/peers_baseline.json" --benchmark_out_format=json ${BENCH_ARGS:-}
+rm -f "${out_dir}"/peers_native_*.json "${out_dir}"/peers_baseline_*.json
+# One N at a time (one map in memory), native then baseline, and within a run the families'
+# repetitions in random order, so that a slow spell of a shared machine does not land on one
+# family only.
+common=(--peers_steps="${steps}" --peers_naive_max_n="${naive_max_n}"
+        --benchmark_repetitions="${repetitions}" --benchmark_enable_random_interleaving=true
+        --benchmark_context=nproc="$(nproc)")
+native=()
+baseline=()
+IFS=',' read -r -a size_list <<< "${sizes}"
+for n in "${size_list[@]}"; do
+  echo "==> N = ${n}: MRPT and sylva built with -march=native"
+  # shellcheck disable=SC2086  # BENCH_ARGS is a list of flags on purpose
+  "${peers}/bench_peers_native" --peers_sizes="${n}" "${common[@]}"     --benchmark_out="${out_dir}/peers_native_${n}.json" --benchmark_out_format=json ${BENCH_ARGS:-}
+  echo "==> N = ${n}: sylva built for baseline x86-64"
+  # shellcheck disable=SC2086
+  "${peers}/bench_peers_baseline" --peers_sizes="${n}" "${common[@]}" --benchmark_filter='^sylva_'     --benchmark_out="${out_dir}/peers_baseline_${n}.json" --benchmark_out_format=json ${BENCH_ARGS:-}
+  native+=("${out_dir}/peers_native_${n}.json")
+  baseline+=("${out_dir}/peers_baseline_${n}.json")
+done
 
 echo
-python3 "${root}/bench/peers/peer_report.py" "${out_dir}/peers_native.json" "${out_dir}/peers_baseline.json" \
+python3 "${root}/bench/peers/peer_report.py" --native "${native[@]}" --baseline "${baseline[@]}" \
   --out "${out_dir}/peers.md" --command "scripts/run_peer_benchmarks.sh"

@@ -13,7 +13,8 @@ runs). Ratios at each N:
 The targets of the issue (at N = 1000: >= 300x vs kfEKFNaive, >= 100x vs kfEKFAlaDavison for
 sylva batched native) are checked and printed.
 
-Usage: peer_report.py NATIVE_JSON [BASELINE_JSON] [--out FILE] [--command TEXT]
+Usage: peer_report.py --native JSON... [--baseline JSON...] [--out FILE] [--command TEXT]
+(several files per build, e.g. one per N, are merged).
 """
 
 import argparse
@@ -24,6 +25,17 @@ FAMILIES = ["mrpt_naive", "mrpt_davison", "sylva_batched", "sylva_davison", "syl
 TARGET_N = 1000
 TARGET_NAIVE = 300.0
 TARGET_DAVISON = 100.0
+
+
+def load_all(paths):
+    """load() of several files, merged; the context of the first."""
+    rows, ctx = {}, {}
+    for i, path in enumerate(paths or []):
+        r, c = load(path)
+        rows.update(r)
+        if i == 0:
+            ctx = c
+    return rows, ctx
 
 
 def load(path):
@@ -75,14 +87,14 @@ def fmt_ratio(r):
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    parser.add_argument("native")
-    parser.add_argument("baseline", nargs="?")
+    parser.add_argument("--native", nargs="+", required=True, help="JSON of bench_peers_native")
+    parser.add_argument("--baseline", nargs="*", help="JSON of bench_peers_baseline")
     parser.add_argument("--out")
     parser.add_argument("--command", default="scripts/run_peer_benchmarks.sh")
     args = parser.parse_args()
 
-    native, ctx = load(args.native)
-    baseline, bctx = load(args.baseline) if args.baseline else ({}, {})
+    native, ctx = load_all(args.native)
+    baseline, bctx = load_all(args.baseline)
     sizes = sorted({n for (_, n) in native} | {n for (_, n) in baseline})
 
     out = []
@@ -93,7 +105,8 @@ def main():
                + (f", baseline: `{bctx.get('peers_cxx_flags', '?')}`" if bctx else "") + ". "
                f"Host: {ctx.get('host_name', '?')}, {ctx.get('num_cpus', '?')} CPUs at "
                f"{ctx.get('mhz_per_cpu', '?')} MHz, run {ctx.get('date', '?')}; "
-               f"{ctx.get('peers_steps_per_iteration', '?')} lap-2 steps per timed iteration, one thread.\n")
+               f"{ctx.get('peers_steps_per_iteration', '?')} lap-2 steps per timed iteration, one thread; "
+               "medians over repetitions.\n")
     out.append("One step = predict with the odometry + update with the step's ~12 measurements "
                "(+ landmarks seen for the first time: none in lap 2). Milliseconds per step:\n")
     header = ["N", "state dim", "obs/step", "MRPT naive", "MRPT AlaDavison",
