@@ -342,6 +342,8 @@ BENCHMARK(BM_StepEfficient)->Apply(sizes);
 BENCHMARK(BM_StepBatched)->Apply(sizes);
 BENCHMARK(BM_StepNaive)->Apply(sizes);
 
+}  // namespace
+
 int main(int argc, char** argv) {
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;

@@ -49,7 +49,7 @@ source "${root}/scripts/lib/install_packages.sh"
 sylva_install_packages cmake g++ libeigen3-dev libbenchmark-dev libmrpt-dev python3
 
 cmake -S "${root}" -B "${build_dir}" -DCMAKE_BUILD_TYPE=Release \
-  -DSYLVA_BUILD_BENCHMARKS=ON -DSYLVA_BUILD_TESTS=OFF -DSYLVA_BUILD_EXAMPLES=OFF
+  -DSYLVA_BUILD_BENCHMARKS=ON -DSYLVA_BUILD_TESTS=OFF -DSYLVA_BUILD_EXAMPLES=OFF -DSYLVA_WITH_MRPT=ON
 cmake --build "${build_dir}" -j "${jobs}" --target peers_agreement bench_peers_native bench_peers_baseline
 peers="${build_dir}/bench/peers"
 
