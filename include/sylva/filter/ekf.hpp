@@ -90,7 +90,7 @@ class BatchLinearizations {
 
 /// Reusable buffers of the batched update (innovation, S, R, L^-1 nu, linearizations).
 struct BatchWorkspace {
-  enum Slot { kInnovation, kInnovationCovariance, kNoise, kWhitenedInnovation, kSlotCount };
+  enum Slot { kInnovation, kInnovationCovariance, kNoise, kWhitenedInnovation, kInverseFactor, kSlotCount };
   Eigen::VectorXd buffers[kSlotCount];
   Eigen::VectorXd lins;
   std::vector<int> offsets;
@@ -783,29 +783,33 @@ class BasicEkf {
       // W = PHt L^-T (in place), x += W L^-1 nu, P -= W W^T on the lower triangle.
       auto delta = meanIncrement();
       if constexpr (M == Eigen::Dynamic) {
-        // A triangular solve from the right treats every row on its own: solve in row blocks
-        // small enough that Eigen keeps its packed panels on the stack.
+        // W = PHt L^-T as a product with the explicit (small, triangular) L^-1: Eigen's
+        // blocked triangular solve on a tall n x km right-hand side is several times slower
+        // than a GEMM. Row blocks keep Eigen's packed panels on the stack. W lives in the
+        // second workspace.
         const int cols = static_cast<int>(PHt.cols());
+        auto L_inv = batch_.matrix(detail::BatchWorkspace::kInverseFactor, cols);
+        L_inv.setIdentity();
+        llt.matrixL().solveInPlace(L_inv);
+        auto W = secondWorkspace<Eigen::Dynamic>(cols);
         const int block = detail::lowerRankUpdateTile(cols);
         for (int r0 = 0; r0 < n_; r0 += block) {
-          auto rows = PHt.middleRows(r0, std::min(block, n_ - r0));
-          llt.matrixU().template solveInPlace<Eigen::OnTheRight>(rows);
+          const int rows = std::min(block, n_ - r0);
+          W.middleRows(r0, rows).noalias() =
+              PHt.middleRows(r0, rows) * L_inv.transpose();  // a plain GEMM (L^-1 has zeros above)
         }
         auto v = batch_.vector(detail::BatchWorkspace::kWhitenedInnovation, cols);
-        v = nu;
-        llt.matrixL().solveInPlace(v);
-        delta.noalias() = PHt * v;
+        v.noalias() = L_inv * nu;
+        delta.noalias() = W * v;
+        checkPosteriorDomain(delta);  // may throw; nothing of the filter is written yet
+        mean_.head(n_) += delta;
+        detail::subtractLowerRankUpdate(P, W);  // a tiled symmetric rank-km update
       } else {
         llt.matrixU().template solveInPlace<Eigen::OnTheRight>(PHt);
         const Eigen::Matrix<double, M, 1> v = llt.matrixL().solve(nu);
         delta.noalias() = PHt * v;
-      }
-      checkPosteriorDomain(delta);  // may throw; nothing of the filter is written yet
-      mean_.head(n_) += delta;
-      if constexpr (M == Eigen::Dynamic) {
-        // Batches: a tiled symmetric rank-k update of the lower triangle.
-        detail::subtractLowerRankUpdate(P, PHt);
-      } else {
+        checkPosteriorDomain(delta);  // may throw; nothing of the filter is written yet
+        mean_.head(n_) += delta;
         // One column at a time: a fixed-size GEMV per column, one pass over half of P.
         for (int j = 0; j < n_; ++j) {
           const Eigen::Matrix<double, M, 1> w_j = PHt.row(j).transpose();
