@@ -81,14 +81,14 @@ const Filter& endOfLapOne(int landmarks) {
     const auto noise = w.world.odometryNoise();
     for (int k = 0; k < w.world.lapBegin(1); ++k)
       sylva_bench::runStep(ekf, w.steps[static_cast<std::size_t>(k)], noise, w.world.config().dt_s,
-                           sylva_bench::Fusion::kBatched, scratch);
+                           sylva::Fusion::kBatched, scratch);
     slot = std::make_unique<Filter>(std::move(ekf));
   }
   return *slot;
 }
 
 template <typename Filter>
-void timeSteps(benchmark::State& state, sylva_bench::Fusion fusion) {
+void timeSteps(benchmark::State& state, sylva::Fusion fusion) {
   const int landmarks = static_cast<int>(state.range(0));
   const World& w = worldOf(landmarks);
   const Filter& start = endOfLapOne<Filter>(landmarks);
@@ -119,9 +119,9 @@ void timeSteps(benchmark::State& state, sylva_bench::Fusion fusion) {
       static_cast<double>(observations) / static_cast<double>(std::max<benchmark::IterationCount>(1, state.iterations()));
 }
 
-void BM_StepBatched(benchmark::State& state) { timeSteps<PointFilter>(state, sylva_bench::Fusion::kBatched); }
-void BM_StepSequential(benchmark::State& state) { timeSteps<PointFilter>(state, sylva_bench::Fusion::kSequential); }
-void BM_StepBatchedUnusedTypes(benchmark::State& state) { timeSteps<MixedFilter>(state, sylva_bench::Fusion::kBatched); }
+void BM_StepBatched(benchmark::State& state) { timeSteps<PointFilter>(state, sylva::Fusion::kBatched); }
+void BM_StepSequential(benchmark::State& state) { timeSteps<PointFilter>(state, sylva::Fusion::kSequential); }
+void BM_StepBatchedUnusedTypes(benchmark::State& state) { timeSteps<MixedFilter>(state, sylva::Fusion::kBatched); }
 
 /// In-place read-modify-write of an n x n matrix (all of it, or its lower triangle): the
 /// bytes an update of P must move at least once. The factor alternates so the values stay put.

@@ -45,10 +45,8 @@ struct InverseRangeBearingOdometry : sylva::InverseRangeBearing {
 using OdometrySlam = sylva::Ekf<sylva::Odometry2D, sylva::Point2>;
 using RangeBearingObservation = sylva::Observation<RangeBearingOdometry>;
 
-enum class Fusion {
-  kBatched,     ///< all known landmarks of a step in one update
-  kSequential,  ///< one 2-D update per known landmark, in measurement order
-};
+/// Batched or sequential fusion of a step's observations (sylva::Fusion).
+using Fusion = sylva::Fusion;
 
 /// A step's inputs in sylva's types (built once, outside any timing).
 struct SylvaStep {
