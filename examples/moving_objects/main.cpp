@@ -54,6 +54,8 @@
 #include "scenes.hpp"
 #include "slam_run.hpp"
 #include "tracker.hpp"
+#include "../common/cli_checks.hpp"
+
 
 #ifndef MOVING_OBJECTS_DEFAULT_DATA
 #define MOVING_OBJECTS_DEFAULT_DATA "../shared/data/laser-people-leg-tracker"
@@ -878,20 +880,10 @@ int runSimulation(const Options& o) {
   return 0;
 }
 
-/// CLI11 check: a finite number >= 0 (or > 0).
-CLI::Validator positive(bool allow_zero) {
-  return CLI::Validator(
-      [allow_zero](std::string& text) -> std::string {
-        std::istringstream is(text);
-        double value = 0.0;
-        if (!(is >> value) || !std::isfinite(value) || value < 0.0 || (!allow_zero && value == 0.0))
-          return std::string("must be a finite number ") + (allow_zero ? ">= 0" : "> 0") + ", got " + text;
-        return std::string();
-      },
-      allow_zero ? "NONNEGATIVE" : "POSITIVE");
-}
 
 }  // namespace
+
+using sylva_examples::positive;
 
 int main(int argc, char** argv) {
   Options o;

@@ -29,6 +29,8 @@
 #include "figures.hpp"
 #include "station_camera.hpp"
 #include "study.hpp"
+#include "../common/cli_checks.hpp"
+
 
 namespace {
 
@@ -343,21 +345,10 @@ int runStudyMode(const Options& o,
   return 0;
 }
 
-/// A CLI11 check that a number is finite and (optionally) positive.
-CLI::Validator finite(bool positive_only, bool allow_zero = false) {
-  return CLI::Validator(
-      [=](std::string& text) -> std::string {
-        std::istringstream is(text);
-        double value = 0.0;
-        if (!(is >> value) || !std::isfinite(value)) return "must be a finite number, got " + text;
-        if (positive_only && (value < 0.0 || (!allow_zero && value == 0.0)))
-          return std::string("must be ") + (allow_zero ? ">= 0" : "> 0") + ", got " + text;
-        return std::string();
-      },
-      positive_only ? (allow_zero ? "NONNEGATIVE" : "POSITIVE") : "NUMBER");
-}
 
 }  // namespace
+
+using sylva_examples::finite;
 
 int main(int argc, char** argv) {
   Options o;

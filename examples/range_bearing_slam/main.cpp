@@ -109,6 +109,8 @@
 #include <sylva/sylva.hpp>
 
 #include "svg_map.hpp"
+#include "../common/cli_checks.hpp"
+
 
 namespace {
 
@@ -546,21 +548,10 @@ int run(const Options& o) {
   return 0;
 }
 
-/// CLI11's PositiveNumber prints the whole double range on failure; this says it plainly.
-CLI::Validator positive(bool allow_zero) {
-  return CLI::Validator(
-      [allow_zero](std::string& text) -> std::string {
-        std::istringstream is(text);
-        double value = 0.0;
-        if (!(is >> value) || !std::isfinite(value) || value < 0.0 || (!allow_zero && value == 0.0))
-          return std::string("must be a finite number ") + (allow_zero ? ">= 0" : "> 0") +
-                 ", got " + text;
-        return std::string();
-      },
-      allow_zero ? "NONNEGATIVE" : "POSITIVE");
-}
 
 }  // namespace
+
+using sylva_examples::positive;
 
 int main(int argc, char** argv) {
   Options o;
