@@ -104,7 +104,7 @@ def plot(path, step, peers, baseline):
         f"set output '{path}'",
         "set logscale xy",
         "set grid xtics ytics mxtics mytics lc rgb '#e0e0e0'",
-        "set key outside right top",
+        "set key top left box opaque font ',10'",
         "set xlabel 'map size N (landmarks); state dimension n = 3 + 2N'",
         "set ylabel 'time per step (CPU, median)'",
         "set title 'One EKF-SLAM step (about 12 observations) against the map size'",
@@ -142,7 +142,8 @@ def main():
     lower = step.get("BoundLowerReadWrite", {})
     sequential = step.get("StepSequential", {})
     mixed = step.get("StepBatchedUnusedTypes", {})
-    gemm = counters.get("GemmPeak", {}).get(0, {}).get("gflops")
+    gemm_gflops = counters.get("GemmPeak", {}).get(0, {}).get("gflops")  # GFLOP/s (a rate counter)
+    gemm = gemm_gflops * 1e9 if gemm_gflops else None  # FLOP/s
 
     ratio_bound = {n: batched[n] / bound[n] for n in SIZES if n in batched and n in bound}
     exponent = slope([(n, batched[n]) for n in batched if FIT[0] <= n <= FIT[1]])
@@ -163,7 +164,7 @@ def main():
     md.append("## Machine and build\n")
     md.append("| | |\n|---|---|")
     md.append(f"| date | {ctx.get('date', '?')} |")
-    md.append(f"| CPU | {ctx.get('num_cpus', '?')} cores at {ctx.get('mhz_per_cpu', '?')} MHz; caches "
+    md.append(f"| CPU | {ctx.get('cpu_model', '?')}, {ctx.get('num_cpus', '?')} cores at {ctx.get('mhz_per_cpu', '?')} MHz; caches "
               + ", ".join(f"L{c['level']} {c['type'].lower()} {c['size'] // 1024} KiB" for c in ctx.get("caches", [])) + " |")
     md.append(f"| load average at start | {', '.join(f'{v:.2f}' for v in ctx.get('load_avg', []))} |")
     md.append(f"| compiler, flags | {ctx.get('compiler', '?')}, `{ctx.get('cxx_flags', '?')}` |")
@@ -232,9 +233,17 @@ def main():
         n = 3 + 2 * TARGET_N
         obs = counters["StepBatched"][TARGET_N].get("observations_per_step", 12.0)
         flops = 2 * obs * n * n  # rank-(2k) update of the lower triangle: 2k * n^2 / 2 FMAs
+        compute = flops / gemm
         md.append(f"At N = {TARGET_N} the rank-{2 * obs:.0f} update of the lower triangle is {flops / 1e6:.0f} MFLOP, "
-                  f"{t(flops / gemm)} at the GEMM peak of this run: the batched step is "
-                  f"{batched[TARGET_N] / (flops / gemm):.2f}x that compute bound and {r1000:.2f}x the memory bound.\n")
+                  f"{t(compute)} at the GEMM peak of this run: the batched step is "
+                  f"{batched[TARGET_N] / compute:.2f}x that compute bound and {r1000:.2f}x the memory bound. "
+                  f"The arithmetic alone, at peak, takes {compute / bound[TARGET_N]:.2f}x the full-matrix bound "
+                  f"here: where the covariance fits the last-level cache (32 MB at N = 1000), reading and writing "
+                  f"it is faster than the flops of a rank-{2 * obs:.0f} update, so the update is compute-bound "
+                  f"and no exact dense update can reach 0.8x the bound on this machine. At small N the matrix "
+                  f"sits in L1/L2, the bound is a few hundred nanoseconds, and the step's fixed costs "
+                  f"(linearizing about 12 observations, S and its Cholesky factor, the prediction) dominate; "
+                  f"hence the ratio to the bound falls from small N to large N instead of staying flat.\n")
 
     if peers:
         md.append("## sylva and MRPT side by side (bench/peers)\n")
