@@ -17,8 +17,7 @@
 # users have builds everything; the sanitizer phase adds a second compiler.
 #
 # Examples and benchmarks are compiled in the Release phase so that CI notices when they
-# break (with --sanitize as well, the benchmarks move to the sanitizer phase, whose clang++
-# compiles them about three times faster than g++; they are only compiled there, not run); ctest runs them only where an example registers a cheap smoke run through
+# break; ctest runs them only where an example registers a cheap smoke run through
 # sylva_add_example_smoke_test() (see the top-level CMakeLists.txt), label "smoke".
 set -euo pipefail
 
@@ -36,14 +35,6 @@ for arg in "$@"; do
     *) echo "test.sh: unknown option '$arg'" >&2; usage >&2; exit 2 ;;
   esac
 done
-
-# With both phases, the benchmarks are compiled once, in the faster sanitizer phase.
-bench_release=ON
-bench_sanitize=OFF
-if ((run_main && run_sanitize)); then
-  bench_release=OFF
-  bench_sanitize=ON
-fi
 
 repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build_root="${SYLVA_BUILD_ROOT:-$repo/build}"
@@ -78,12 +69,12 @@ run_ctest() {
 
 # ---- Release: tests, examples and benchmarks ---------------------------------------------
 if ((run_main)); then
-  begin "Release build (tests, examples$([[ $bench_release == ON ]] && echo ', benchmarks')) in $build_root/test"
+  begin "Release build (tests, examples, benchmarks) in $build_root/test"
   # -O2 rather than CMake's Release -O3: g++ spends most of its time on these templates in
   # the optimizer, and the tests and smoke runs do not need the last few percent of speed
   # (scripts/run_benchmarks.sh builds the published benchmarks at -O3 in a build of its own).
   cmake -S "$repo" -B "$build_root/test" -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS_RELEASE="-O2 -DNDEBUG" \
-    -DSYLVA_BUILD_TESTS=ON -DSYLVA_BUILD_EXAMPLES=ON -DSYLVA_BUILD_BENCHMARKS="$bench_release"
+    -DSYLVA_BUILD_TESTS=ON -DSYLVA_BUILD_EXAMPLES=ON -DSYLVA_BUILD_BENCHMARKS=ON
   cmake --build "$build_root/test" -j "$jobs"
   finish "Release build"
   begin "ctest (Release)"
@@ -98,11 +89,11 @@ fi
 # tests are template-heavy and g++ 12 spends about 3x longer on them (no_allocation.test.cpp:
 # 110 s with g++ -O2, 34 s with clang++ -O2), and a second compiler catches what one misses.
 if ((run_sanitize)); then
-  begin "ASan+UBSan build (tests$([[ $bench_sanitize == ON ]] && echo ', benchmarks'), ${SYLVA_SANITIZE_CXX:-clang++}) in $build_root/sanitize"
+  begin "ASan+UBSan build (tests, ${SYLVA_SANITIZE_CXX:-clang++}) in $build_root/sanitize"
   cmake -S "$repo" -B "$build_root/sanitize" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
     -DCMAKE_CXX_COMPILER="${SYLVA_SANITIZE_CXX:-clang++}" \
     -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1" \
-    -DSYLVA_BUILD_TESTS=ON -DSYLVA_BUILD_EXAMPLES=OFF -DSYLVA_BUILD_BENCHMARKS="$bench_sanitize" \
+    -DSYLVA_BUILD_TESTS=ON -DSYLVA_BUILD_EXAMPLES=OFF -DSYLVA_BUILD_BENCHMARKS=OFF \
     -DSYLVA_SANITIZERS="address;undefined"
   cmake --build "$build_root/sanitize" -j "$jobs"
   finish "ASan+UBSan build"
