@@ -2,5 +2,6 @@
 // IWYU pragma: begin_exports
 #include "sylva/motion/constant_velocity_3d.hpp"
 #include "sylva/motion/odometry_2d.hpp"
+#include "sylva/motion/pose_2d.hpp"
 #include "sylva/motion/unicycle_2d.hpp"
 // IWYU pragma: end_exports

@@ -33,15 +33,15 @@
 #include "sylva/core/angles.hpp"
 #include "sylva/core/jacobian_ref.hpp"
 #include "sylva/core/types.hpp"
+#include "sylva/motion/pose_2d.hpp"
 
 namespace sylva {
 
-struct Odometry2D {
-  static constexpr int kDim = 3;         ///< [x, y, theta]
+/// State [x, y, theta], normalize() and difference() come from Pose2D.
+struct Odometry2D : Pose2D {
   static constexpr int kControlDim = 3;  ///< [dx, dy, dtheta] in the frame of the previous pose
   static constexpr int kNoiseDim = 3;    ///< additive noise on the increment
   static constexpr const char* kName = "Odometry2D";
-  using State = Vec<3>;
   using Control = Vec<3>;
 
   /// Composes `x` with the increment `u` (`dt` is ignored, see the file comment).
@@ -80,16 +80,6 @@ struct Odometry2D {
     Vec<3, T> next;
     next << x[0] + c * dx - s * dy, x[1] + s * dx + c * dy, wrapAngle(T(x[2] + u[2] + n[2]));
     return next;
-  }
-
-  /// Brings a state back to its canonical range (theta in (-pi, pi]).
-  static void normalize(Eigen::Ref<State> x) { x[2] = wrapAngle(x[2]); }
-
-  /// Difference of two states with the angle wrapped, for errors and NEES.
-  static State difference(const State& a, const State& b) {
-    State d = a - b;
-    d[2] = wrapAngle(d[2]);
-    return d;
   }
 };
 

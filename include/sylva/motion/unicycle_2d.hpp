@@ -18,15 +18,15 @@
 #include "sylva/core/angles.hpp"
 #include "sylva/core/jacobian_ref.hpp"
 #include "sylva/core/types.hpp"
+#include "sylva/motion/pose_2d.hpp"
 
 namespace sylva {
 
-struct Unicycle2D {
-  static constexpr int kDim = 3;         ///< [x, y, theta]
+/// State [x, y, theta], normalize() and difference() come from Pose2D.
+struct Unicycle2D : Pose2D {
   static constexpr int kControlDim = 2;  ///< [v, omega]
   static constexpr int kNoiseDim = 2;    ///< additive noise on [v, omega]
   static constexpr const char* kName = "Unicycle2D";
-  using State = Vec<3>;
   using Control = Vec<2>;
 
   /// Propagates `x` over `dt` seconds under control `u` (eq. 2.12-2.14).
@@ -67,16 +67,6 @@ struct Unicycle2D {
     Vec<3, T> next;
     next << x[0] + T(dt) * v * cos(heading), x[1] + T(dt) * v * sin(heading), wrapAngle(T(x[2] + T(dt) * omega));
     return next;
-  }
-
-  /// Brings a state back to its canonical range (theta in (-pi, pi]).
-  static void normalize(Eigen::Ref<State> x) { x[2] = wrapAngle(x[2]); }
-
-  /// Difference of two states with the angle wrapped, for errors and NEES.
-  static State difference(const State& a, const State& b) {
-    State d = a - b;
-    d[2] = wrapAngle(d[2]);
-    return d;
   }
 };
 
