@@ -18,12 +18,16 @@ the same run: step / bound from bench_slam_step, sylva / MRPT from bench_peers.
 
 import argparse
 import json
-import math
 import os
 import statistics
 import subprocess
 import sys
 from collections import defaultdict
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+# The exponent fit (log time against log n, n = 3 + 2N) and the formatting of times and
+# ratios are those of the update-form report.
+from bench_report import fit_exponent as slope, fmt_ratio as x, fmt_time as t  # noqa: E402
 
 SIZES = [50, 100, 200, 500, 1000, 2000]
 FIT = (500, 1000)
@@ -57,30 +61,6 @@ def load_peers(paths):
 
     rows, _ = peer_report.load_all(paths)
     return {k: v["ms"] / 1e3 for k, v in rows.items() if v.get("ms") is not None}
-
-
-def slope(points):
-    if len(points) < 2:
-        return None
-    xs = [math.log(3 + 2 * n) for n, _ in points]
-    ys = [math.log(t) for _, t in points]
-    mx, my = sum(xs) / len(xs), sum(ys) / len(ys)
-    return sum((x - mx) * (y - my) for x, y in zip(xs, ys)) / sum((x - mx) ** 2 for x in xs)
-
-
-def t(seconds):
-    if seconds is None:
-        return "-"
-    for unit, scale in (("s", 1.0), ("ms", 1e-3), ("us", 1e-6)):
-        if seconds >= scale:
-            return f"{seconds / scale:.3g} {unit}"
-    return f"{seconds * 1e9:.3g} ns"
-
-
-def x(value, digits=3):
-    if value is None:
-        return "-"
-    return f"{value:.0f}x" if value >= 100 else f"{value:.{digits}g}x"
 
 
 def verdict(ok):
