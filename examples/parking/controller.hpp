@@ -77,11 +77,12 @@
 #include <string>
 #include <vector>
 
+#include <sylva/core/angles.hpp>
 #include <sylva/core/error.hpp>
 
 namespace parking {
 
-inline constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
+inline constexpr double kDegToRad = sylva::kPi / 180.0;
 
 enum class State { kStart, kForward, kReverse, kStop, kLost };
 

@@ -29,6 +29,7 @@
 
 #include <Eigen/LU>
 
+#include <sylva/core/angles.hpp>
 #include <sylva/core/error.hpp>
 #include <sylva/core/types.hpp>
 #include <sylva/sim/random.hpp>
@@ -124,7 +125,7 @@ class StationCamera {
   /// reference cannot be seen from any pose.
   Pose goalPose(const std::array<double, 3>& reference_px) const {
     const double A_r = reference_px[2] - reference_px[0];
-    Pose x(0.0, -2.0 * p_.focal_px * p_.spacing_m / A_r, 0.5 * 3.14159265358979323846);
+    Pose x(0.0, -2.0 * p_.focal_px * p_.spacing_m / A_r, 0.5 * sylva::kPi);
     const auto residual = [&](const Pose& pose) {
       const StationView v = view(pose);
       sylva::Vec<3> r;
