@@ -30,7 +30,6 @@ namespace sylva_peers {
 
 using sylva_bench::Fusion;
 using sylva_bench::OdometrySlam;
-using sylva_bench::RangeBearingOdometry;
 
 enum class SylvaFusion { kBatched, kAlaDavison, kSequential };
 
@@ -79,12 +78,12 @@ struct FrozenComponent {
 /// Reusable buffers of a step.
 struct PeerScratch {
   sylva_bench::StepScratch step;
-  std::vector<sylva::Linearization<RangeBearingOdometry>> prior;
+  std::vector<sylva::Linearization<sylva::RangeBearing>> prior;
 };
 
 /// kfEKFAlaDavison's update of the known landmarks (see the file comment).
 inline void updateAlaDavison(OdometrySlam& ekf, PeerScratch& scratch) {
-  const RangeBearingOdometry model;
+  const sylva::RangeBearing model;
   const auto& known = scratch.step.known;
   scratch.prior.clear();
   for (const auto& obs : known) scratch.prior.push_back(ekf.linearize(model, obs.id));

@@ -4,10 +4,8 @@
 /// and the step drivers, shared by the benchmarks.
 ///
 /// Robot: `sylva::Odometry2D` (the odometry increment composed with the pose, as MRPT's
-/// CRangeBearingKFSLAM2D predicts). `sylva::RangeBearing` and `sylva::InverseRangeBearing`
-/// are written for `Unicycle2D`; their math only reads the pose [x, y, theta], which both
-/// robots share, so `RangeBearingOdometry` and `InverseRangeBearingOdometry` reuse them and
-/// only name the other robot.
+/// CRangeBearingKFSLAM2D predicts), observed with `sylva::RangeBearing` and initialized with
+/// `sylva::InverseRangeBearing` (both written for `Pose2D`, the base of `Odometry2D`).
 ///
 /// One step (`runStep`), in MRPT's order (see bench/peers/README.md):
 ///   1. predict with the odometry, unless the step has no motion or the map is still empty
@@ -30,20 +28,8 @@
 
 namespace sylva_bench {
 
-/// `sylva::RangeBearing` for an `Odometry2D` robot (same math, see the file comment).
-struct RangeBearingOdometry : sylva::RangeBearing {
-  using Robot = sylva::Odometry2D;
-  static constexpr const char* kName = "RangeBearing (Odometry2D)";
-};
-
-/// `sylva::InverseRangeBearing` for an `Odometry2D` robot.
-struct InverseRangeBearingOdometry : sylva::InverseRangeBearing {
-  using Robot = sylva::Odometry2D;
-  static constexpr const char* kName = "InverseRangeBearing (Odometry2D)";
-};
-
 using OdometrySlam = sylva::Ekf<sylva::Odometry2D, sylva::Point2>;
-using RangeBearingObservation = sylva::Observation<RangeBearingOdometry>;
+using RangeBearingObservation = sylva::Observation<sylva::RangeBearing>;
 
 /// Batched or sequential fusion of a step's observations (sylva::Fusion).
 using Fusion = sylva::Fusion;
@@ -109,7 +95,7 @@ void splitObservations(const Filter& ekf, const SylvaStep& step, StepScratch& sc
 /// Step 3 of the file comment.
 template <typename Filter>
 void addNewLandmarks(Filter& ekf, const StepScratch& scratch) {
-  const InverseRangeBearingOdometry inverse;
+  const sylva::InverseRangeBearing inverse;
   for (const RangeBearingObservation* obs : scratch.fresh) ekf.add(obs->id, inverse, obs->z, obs->noise);
 }
 
@@ -123,7 +109,7 @@ void runStep(Filter& ekf,
              StepScratch& scratch) {
   predictStep(ekf, step, odometry_noise, dt_s);
   splitObservations(ekf, step, scratch);
-  const RangeBearingOdometry model;
+  const sylva::RangeBearing model;
   if (fusion == Fusion::kBatched) {
     ekf.update(model, scratch.known);
   } else {

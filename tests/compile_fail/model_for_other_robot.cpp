@@ -1,4 +1,5 @@
-// A measurement model written for another robot type does not compile with this filter.
+// A measurement model written for another robot type (here one derived from the filter's
+// robot: only a base of the filter's robot fits) does not compile with this filter.
 #include <sylva/sylva.hpp>
 
 namespace {

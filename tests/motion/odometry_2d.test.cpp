@@ -4,6 +4,8 @@
 
 #include <sylva/filter/ekf.hpp>
 #include <sylva/landmarks/point2.hpp>
+#include <sylva/measurements/range_bearing.hpp>
+#include <sylva/motion/unicycle_2d.hpp>
 #include <sylva/motion/odometry_2d.hpp>
 #include <sylva/testing/check_jacobians.hpp>
 
@@ -92,4 +94,21 @@ TEST_CASE("Ekf with Odometry2D predicts F P F^T + R(theta) Sigma_u R(theta)^T", 
   const Mat<3, 3> expected_cov = F * P0 * F.transpose() + R * sigma_u * R.transpose();
   CHECK((ekf.robotMean() - expected_mean).norm() < 1e-15);
   CHECK((ekf.robotCovariance() - expected_cov).norm() < 1e-15);
+}
+
+TEST_CASE("RangeBearing, written for Pose2D, serves Odometry2D and Unicycle2D alike", "[motion][filter]") {
+  // The same prior and the same observation through both robots: the update only reads the
+  // pose, so the posteriors must agree to rounding.
+  const Vec<3> x0(1.0, 2.0, 0.4);
+  const Mat<3, 3> P0 = Vec<3>(0.04, 0.09, 0.01).asDiagonal();
+  const auto noise = Gaussian<2>::sigmas({0.1, 0.02});
+  Ekf<Odometry2D, Point2> odometry(x0, P0);
+  Ekf<Unicycle2D, Point2> unicycle(x0, P0);
+  odometry.add(3, InverseRangeBearing{}, Vec<2>(4.0, 0.3), noise);
+  unicycle.add(3, InverseRangeBearing{}, Vec<2>(4.0, 0.3), noise);
+  odometry.update(RangeBearing{}, 3, Vec<2>(4.1, 0.28), noise);
+  unicycle.update(RangeBearing{}, 3, Vec<2>(4.1, 0.28), noise);
+  CHECK((odometry.mean() - unicycle.mean()).norm() < 1e-14);
+  CHECK((odometry.covariance() - unicycle.covariance()).norm() < 1e-14);
+  CHECK((odometry.robotMean() - x0).norm() > 1e-3);  // the update did move the robot
 }

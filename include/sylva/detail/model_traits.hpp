@@ -15,6 +15,14 @@
 
 namespace sylva::detail {
 
+/// A model written for `ModelRobot` serves a filter whose robot is `Robot` when the two are
+/// the same type or `ModelRobot` is a base of `Robot`: `RangeBearing` is written for
+/// `Pose2D`, so it serves `Unicycle2D`, `Odometry2D` and any robot whose state is the
+/// planar pose. A model written for a robot *derived* from the filter's does not fit.
+template <typename ModelRobot, typename Robot>
+inline constexpr bool kRobotFits =
+    std::is_same_v<ModelRobot, Robot> || std::is_base_of_v<ModelRobot, Robot>;
+
 template <typename Model, typename = void>
 struct HasAnalyticJacobians : std::false_type {};
 template <typename Model>

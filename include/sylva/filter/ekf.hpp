@@ -438,8 +438,9 @@ class BasicEkf {
     constexpr int Z = InverseModel::kMeasurementDim;
     static_assert(kHolds<Landmark>,
                   "the inverse model's Landmark type is not in the filter's Landmarks... list");
-    static_assert(std::is_same_v<typename InverseModel::Robot, Robot>,
-                  "the inverse model is written for another robot type");
+    static_assert(detail::kRobotFits<typename InverseModel::Robot, Robot>,
+                  "the inverse model is written for another robot type (its Robot is neither "
+                  "the filter's robot nor a base of it)");
     if (contains(id))
       fail(ErrorCode::kDuplicateId, std::string(InverseModel::kName) + ": landmark id " +
                                         std::to_string(id) + " already exists");
@@ -568,8 +569,8 @@ class BasicEkf {
   template <typename Model>
   static constexpr void checkModel() {
     static_assert(Model::kDim > 0, "Measurement model must define `static constexpr int kDim` > 0");
-    static_assert(std::is_same_v<typename Model::Robot, Robot>,
-                  "Measurement model's `Robot` type is not the filter's robot");
+    static_assert(detail::kRobotFits<typename Model::Robot, Robot>,
+                  "Measurement model's `Robot` type is neither the filter's robot nor a base of it");
     static_assert(kHolds<typename Model::Landmark>,
                   "Measurement model's `Landmark` type is not in the filter's Landmarks... list");
   }

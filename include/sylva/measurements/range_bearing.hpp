@@ -1,8 +1,9 @@
 #pragma once
 /// @file
-/// `RangeBearing`: range and bearing from a `Unicycle2D` robot to a `Point2` landmark
-/// (multisensor thesis, Amarasinghe 2008, eq. 2.15-2.17), and `InverseRangeBearing`, the
-/// landmark initialization from one such measurement (eq. 2.33, 2.37-2.38).
+/// `RangeBearing`: range and bearing from a planar robot (any robot deriving from `Pose2D`:
+/// `Unicycle2D`, `Odometry2D`) to a `Point2` landmark (multisensor thesis, Amarasinghe 2008,
+/// eq. 2.15-2.17), and `InverseRangeBearing`, the landmark initialization from one such
+/// measurement (eq. 2.33, 2.37-2.38).
 ///
 ///   dx = x_l - x_r,  dy = y_l - y_r,  d = sqrt(dx^2 + dy^2)
 ///   z  = [ d, wrap(atan2(dy, dx) - theta_r) ]                      (2.16, 2.17)
@@ -31,12 +32,12 @@
 #include "sylva/core/scalar.hpp"
 #include "sylva/core/types.hpp"
 #include "sylva/landmarks/point2.hpp"
-#include "sylva/motion/unicycle_2d.hpp"
+#include "sylva/motion/pose_2d.hpp"
 
 namespace sylva {
 
 struct RangeBearing {
-  using Robot = Unicycle2D;
+  using Robot = Pose2D;  // serves Unicycle2D, Odometry2D, ...
   using Landmark = Point2;
   static constexpr int kDim = 2;  ///< [range_m, bearing_rad]
   static constexpr const char* kName = "RangeBearing";
@@ -95,7 +96,7 @@ struct RangeBearing {
 ///   l = [x_r + r cos(theta_r + b), y_r + r sin(theta_r + b)]
 /// with `J_l_x` (2x3, eq. 2.37) and `J_l_z` (2x2, eq. 2.38).
 struct InverseRangeBearing {
-  using Robot = Unicycle2D;
+  using Robot = Pose2D;  // serves Unicycle2D, Odometry2D, ...
   using Landmark = Point2;
   static constexpr int kMeasurementDim = 2;
   static constexpr const char* kName = "InverseRangeBearing";
