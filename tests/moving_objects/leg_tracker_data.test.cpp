@@ -1,6 +1,7 @@
 #include "sylva_catch.hpp"
 
 #include "error_helpers.hpp"
+#include "temp_folder.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -12,24 +13,8 @@
 
 namespace unity_moving_objects_leg_tracker_data {
 
-namespace fs = std::filesystem;
-
-/// A fresh folder for the files each test case writes.
-struct TempFolder {
-  fs::path path;
-  explicit TempFolder(const std::string& name) : path(fs::temp_directory_path() / ("sylva_moving_objects_" + name)) {
-    fs::remove_all(path);
-    fs::create_directories(path);
-  }
-  ~TempFolder() {
-    std::error_code ignored;
-    fs::remove_all(path, ignored);
-  }
-  std::string write(const std::string& file, const std::string& text) const {
-    std::ofstream(path / file) << text;
-    return (path / file).string();
-  }
-};
+using sylva_test::contains;
+using sylva_test::TempFolder;
 
 const char* kParams =
     "# LaserScan parameters\n"
@@ -54,8 +39,6 @@ std::string loadError(const TempFolder& dir, const std::string& csv) {
   }
   return "";
 }
-
-bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
 }  // namespace unity_moving_objects_leg_tracker_data
 
@@ -92,8 +75,8 @@ TEST_CASE("leg_tracker loader: a malformed line is reported with file name and l
   CHECK(contains(e, "field 4 is not a number: 'x3'"));
   e = loadError(dir, ok + ok.substr(0, 0) + "100.1,1,2,3\n");
   CHECK(contains(e, "rec_scans.csv:2:"));
-  CHECK(contains(e, "got 4 fields"));
-  CHECK(contains(loadError(dir, ok + "100.1,1,2,3,4,5\n"), "got 6 fields"));
+  CHECK(contains(e, "expected 5 fields, got 4"));
+  CHECK(contains(loadError(dir, ok + "100.1,1,2,3,4,5\n"), "expected 5 fields, got 6"));
   CHECK(contains(loadError(dir, ok + "100.1,1,2,3,\n"), ":2: the line ends with an empty field"));
   CHECK(contains(loadError(dir, ok + "100.1,1,,3,4\n"), "field 3 is not a number: ''"));
   CHECK(contains(loadError(dir, ok + "99.0,1,2,3,4\n"), ":2: the stamp 99 does not come after"));
