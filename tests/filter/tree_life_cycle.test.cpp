@@ -1,6 +1,7 @@
 // TreeLifeCycle (Fig. 3.3): the default rules fire when they should and not before, the
 // conversions equal doing them by hand, user-written rules plug in, bad calls are refused.
 
+#include "camera_pose.hpp"
 #include "sylva_catch.hpp"
 
 #include <cmath>
@@ -18,25 +19,13 @@
 namespace unity_filter_tree_life_cycle {
 
 using namespace sylva;
+using sylva_test::lookAt;
 using sylva_test::throwsCode;
 
 namespace {
 
 const PinholeCamera kCamera{500.0, 500.0, 320.0, 240.0, 640, 480};
 using Filter = Ekf<ConstantVelocity3D, InverseDepth, Point3, TreeXYZR>;
-
-Vec<13> lookAt(const Vec<3>& position, const Vec<3>& target) {
-  const Vec<3> z_C = (target - position).normalized();
-  const Vec<3> x_C = z_C.cross(Vec<3>::UnitZ()).normalized();
-  const Vec<3> y_C = z_C.cross(x_C);
-  Mat<3, 3> R;
-  R << x_C, y_C, z_C;
-  const Eigen::Quaterniond q(R);
-  Vec<13> x = Vec<13>::Zero();
-  x.head<3>() = position;
-  x.segment<4>(3) = Vec<4>(q.w(), q.x(), q.y(), q.z());
-  return x;
-}
 
 // Test-only initializations that copy a landmark (an inverse-depth point, an IDR tree) into the state.
 using CopyInverseDepth = sylva_test::CopyInit<ConstantVelocity3D, InverseDepth>;
@@ -60,7 +49,7 @@ Gaussian<6> inverseDepthNoise(double sigma_rho) {
 
 TEST_CASE("inverse depth becomes XYZ when its linearity index falls below the threshold", "[life_cycle]") {
   const Vec<3> tree(10.0, 0.0, 0.0);
-  Filter ekf(lookAt(Vec<3>(0.0, 0.0, 1.5), tree), Mat<13, 13>::Identity() * 1e-6);
+  Filter ekf(lookAt(Vec<3>(0.0, 0.0, 1.5), tree, 0.0, 1.0, Vec<6>::Zero()), Mat<13, 13>::Identity() * 1e-6);
   // Id 1: depth well known (sigma_rho 0.001 at rho ~0.1: L ~ 0.04). Id 2: vague (L >> 0.1).
   ekf.add(1, CopyInverseDepth{}, rayTowards(Vec<3>(0.0, 0.0, 1.5), tree, 1.0 / 10.1), inverseDepthNoise(0.001));
   ekf.add(2, CopyInverseDepth{}, rayTowards(Vec<3>(0.0, 0.0, 1.5), Vec<3>(8.0, 3.0, 0.0), 0.1), inverseDepthNoise(0.5));
@@ -76,7 +65,7 @@ TEST_CASE("inverse depth becomes XYZ when its linearity index falls below the th
   CHECK(ekf.covariance() == by_hand.covariance());
 
   // A stricter threshold keeps it as inverse depth; a landmark at infinity is never ready.
-  Filter strict(lookAt(Vec<3>(0.0, 0.0, 1.5), tree), Mat<13, 13>::Identity() * 1e-6);
+  Filter strict(lookAt(Vec<3>(0.0, 0.0, 1.5), tree, 0.0, 1.0, Vec<6>::Zero()), Mat<13, 13>::Identity() * 1e-6);
   strict.add(1, CopyInverseDepth{}, rayTowards(Vec<3>(0.0, 0.0, 1.5), tree, 1.0 / 10.1), inverseDepthNoise(0.001));
   strict.add(3, CopyInverseDepth{}, rayTowards(Vec<3>(0.0, 0.0, 1.5), tree, 0.0), inverseDepthNoise(1e-6));
   CHECK(TreeLifeCycle<>(kCamera, LinearityIndexBelow{0.01}).convertInverseDepth(strict).empty());
@@ -88,7 +77,7 @@ TEST_CASE("an IDR tree becomes XYZ-R by the same linearity rule, inverse-depth p
   using WithIdr = Ekf<ConstantVelocity3D, InverseDepth, Point3, TreeXYZR, InverseDepthRadius>;
   const Vec<3> tree(10.0, 0.0, 0.0);
   const Vec<3> anchor(0.0, 0.0, 1.5);
-  WithIdr ekf(lookAt(anchor, tree), Mat<13, 13>::Identity() * 1e-6);
+  WithIdr ekf(lookAt(anchor, tree, 0.0, 1.0, Vec<6>::Zero()), Mat<13, 13>::Identity() * 1e-6);
   // Ids 1 and 2 as in the inverse-depth case, now as IDR trees (kappa = 0.25 m * rho);
   // id 3, a well-known inverse-depth point, is for convertInverseDepth, not for this call.
   const auto idr = [&](const Vec<3>& target, double rho) {
@@ -122,7 +111,7 @@ TEST_CASE("an IDR tree becomes XYZ-R by the same linearity rule, inverse-depth p
 
 TEST_CASE("XYZ becomes XYZ-R once its position is certain enough", "[life_cycle]") {
   const Vec<4> truth(10.0, 0.0, 0.0, 0.3);
-  const Vec<13> camera = lookAt(Vec<3>(0.0, 0.5, 1.5), truth.head<3>());
+  const Vec<13> camera = lookAt(Vec<3>(0.0, 0.5, 1.5), truth.head<3>(), 0.0, 1.0, Vec<6>::Zero());
   Filter ekf(camera, Mat<13, 13>::Identity() * 1e-6);
   ekf.add(1, CopyInverseDepth{}, rayTowards(camera.head<3>(), truth.head<3>(), 1.0 / (truth.head<3>() - camera.head<3>()).norm()),
           inverseDepthNoise(0.002));
@@ -156,7 +145,7 @@ struct EvenIdsOnly {
 }  // namespace
 
 TEST_CASE("user-written switching rules plug into the life cycle", "[life_cycle]") {
-  Filter ekf(lookAt(Vec<3>(0.0, 0.0, 1.5), Vec<3>(10.0, 0.0, 0.0)), Mat<13, 13>::Identity() * 1e-6);
+  Filter ekf(lookAt(Vec<3>(0.0, 0.0, 1.5), Vec<3>(10.0, 0.0, 0.0), 0.0, 1.0, Vec<6>::Zero()), Mat<13, 13>::Identity() * 1e-6);
   for (Id id = 1; id <= 4; ++id)
     ekf.add(id, CopyInverseDepth{}, rayTowards(Vec<3>(0.0, 0.0, 1.5), Vec<3>(10.0, id - 2.0, 0.0), 0.1), inverseDepthNoise(0.5));
   const TreeLifeCycle<EvenIdsOnly, EvenIdsOnly> life(kCamera);

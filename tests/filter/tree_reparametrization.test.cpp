@@ -3,6 +3,7 @@
 // afterwards against the dense reference, and the rejections that must leave the filter
 // bit-identical (wrong type, bad measurement, degenerate geometry, a radius pushed <= 0).
 
+#include "camera_pose.hpp"
 #include "sylva_catch.hpp"
 
 #include <cmath>
@@ -23,25 +24,12 @@
 namespace unity_filter_tree_reparametrization {
 
 using namespace sylva;
+using sylva_test::lookAt;
 using sylva_test::throwsCode;
 
 namespace {
 
 const PinholeCamera kCamera{500.0, 500.0, 320.0, 240.0, 640, 480};
-
-Vec<13> lookAt(const Vec<3>& position, const Vec<3>& target) {
-  const Vec<3> z_C = (target - position).normalized();
-  const Vec<3> x_C = z_C.cross(Vec<3>::UnitZ()).normalized();
-  const Vec<3> y_C = z_C.cross(x_C);
-  Mat<3, 3> R;
-  R << x_C, y_C, z_C;
-  const Eigen::Quaterniond q(R);
-  Vec<13> x = Vec<13>::Zero();
-  x.head<3>() = position;
-  x.segment<4>(3) = Vec<4>(q.w(), q.x(), q.y(), q.z());
-  x.segment<3>(7) = Vec<3>(1.0, 0.0, 0.0);
-  return x;
-}
 
 // Test-only initialization of a Point3 at the camera position plus a world-frame offset z,
 // so that the new landmark is correlated with the camera.
@@ -62,7 +50,6 @@ struct OffsetInit {
 
 using Filter = Ekf<ConstantVelocity3D, Point3, TreeXYZR>;
 
-
 Mat<13, 13> initialCovariance() {
   Mat<13, 13> P = Mat<13, 13>::Identity() * 1e-4;
   P.block<3, 3>(7, 7) *= 10.0;
@@ -71,7 +58,7 @@ Mat<13, 13> initialCovariance() {
 }
 
 struct Scene {
-  Vec<13> camera = lookAt(Vec<3>(-8.0, 0.5, 1.5), Vec<3>(0.0, 0.0, 0.0));
+  Vec<13> camera = lookAt(Vec<3>(-8.0, 0.5, 1.5), Vec<3>(0.0, 0.0, 0.0), 0.0, 1.0, (Vec<6>() << 1.0, 0.0, 0.0, 0.0, 0.0, 0.0).finished());
   Filter ekf{camera, initialCovariance()};
   testing::DenseReferenceEkf<ConstantVelocity3D> ref{ConstantVelocity3D{}, camera, initialCovariance()};
   Vec<4> truth{0.2, -0.3, 0.0, 0.3};

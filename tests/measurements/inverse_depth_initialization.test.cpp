@@ -6,6 +6,7 @@
 // monocular filter end to end: add, PinholePoint<InverseDepth> updates from a moving camera,
 // the switch to XYZ, PinholePoint<Point3> updates, against the dense reference EKF.
 
+#include "camera_pose.hpp"
 #include "sylva_catch.hpp"
 
 #include <cmath>
@@ -31,30 +32,13 @@
 namespace unity_measurements_inverse_depth_initialization {
 
 using namespace sylva;
+using sylva_test::lookAt;
 using sylva_test::throwsCode;
 
 namespace {
 
 constexpr double kPiD = 3.14159265358979323846;
 const PinholeCamera kCamera{500.0, 480.0, 320.0, 240.0, 640, 480};
-
-// Camera state at `position` looking at `target` (world z up; camera x right, y down); the
-// stored quaternion is multiplied by `scale`. `up` is the world direction the camera's
-// "up" is taken against (it must not be parallel to the viewing direction).
-Vec<13> lookAt(const Vec<3>& position,
-               const Vec<3>& target,
-               double scale = 1.0,
-               const Vec<3>& up = Vec<3>::UnitZ()) {
-  const Vec<3> z_C = (target - position).normalized();
-  const Vec<3> x_C = z_C.cross(up).normalized();
-  const Vec<3> y_C = z_C.cross(x_C);
-  Mat<3, 3> R;
-  R << x_C, y_C, z_C;
-  const Eigen::Quaterniond q(R);
-  Vec<13> x;
-  x << position, scale * Vec<4>(q.w(), q.x(), q.y(), q.z()), 0.3, -0.2, 0.1, 0.05, 0.1, -0.2;
-  return x;
-}
 
 Vec<13> randomCamera(sim::Rng& rng) {
   Vec<4> q(rng.normal(), rng.normal(), rng.normal(), rng.normal());
@@ -187,7 +171,7 @@ TEST_CASE("InverseDepthInitialization Jacobians match numerical differentiation"
   }
   SECTION("quaternion far from unit norm") {
     for (double scale : {0.05, 20.0, 1e3}) {
-      const Vec<13> x = lookAt(Vec<3>(1, -2, 1.5), Vec<3>(6, 1, 1.0), scale);
+      const Vec<13> x = lookAt(Vec<3>(1, -2, 1.5), Vec<3>(6, 1, 1.0), 0.0, scale);
       requireJacobians(init, x, init.measurement(Vec<2>(100, 400)));
       Mat<6, 13> J_x;
       const Vec<6> l = init(x, init.measurement(Vec<2>(100, 400)), J_x);
@@ -205,7 +189,7 @@ TEST_CASE("InverseDepthInitialization Jacobians match numerical differentiation"
     // azimuth's Jacobian grows like 1 / cos(phi) there; it is still exact.
     for (double sign : {1.0, -1.0}) {
       const Vec<13> x =
-          lookAt(Vec<3>(0.5, 0.5, 1.0), Vec<3>(0.5, 0.5, 1.0 + sign), 1.0, Vec<3>::UnitX());
+          lookAt(Vec<3>(0.5, 0.5, 1.0), Vec<3>(0.5, 0.5, 1.0 + sign));
       for (double offset_px : {50.0, 5.0, 0.5}) {
         const Vec<3> z =
             init.measurement(Vec<2>(kCamera.cx + offset_px, kCamera.cy + 0.3 * offset_px));
@@ -267,7 +251,6 @@ namespace {
 
 using MonoEkf = Ekf<ConstantVelocity3D, InverseDepth, Point3, TreeXYZR>;
 using Reference = testing::DenseReferenceEkf<ConstantVelocity3D>;
-
 
 // A camera 1.5 m above the ground looking along world +x and moving sideways along world +y
 // at 0.5 m/s; its velocity is known well (the scale of a monocular map comes from it).

@@ -8,6 +8,7 @@
 // the switch to XYZ-R against the dense reference EKF, and a tree estimated from a moving
 // camera.
 
+#include "camera_pose.hpp"
 #include "sylva_catch.hpp"
 
 #include <algorithm>
@@ -39,6 +40,7 @@
 namespace unity_measurements_inverse_depth_tree_width {
 
 using namespace sylva;
+using sylva_test::lookAt;
 using sylva::sim::Rng;
 using sylva_test::throwsCode;
 using ToTree = InverseDepthRadiusToTree<ConstantVelocity3D>;
@@ -48,27 +50,6 @@ namespace {
 constexpr double kPiD = 3.14159265358979323846;
 const PinholeCamera kCamera{500.0, 480.0, 320.0, 240.0, 640, 480};
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-// Camera state at `position` looking at `target` (world z up; camera x right, y down),
-// rolled by `roll_rad` about the optical axis; the stored quaternion is multiplied by `scale`.
-Vec<13> lookAt(const Vec<3>& position,
-               const Vec<3>& target,
-               double roll_rad = 0.0,
-               double scale = 1.0) {
-  const Vec<3> z_C = (target - position).normalized();
-  Vec<3> side = z_C.cross(Vec<3>::UnitZ());
-  if (side.norm() < 1e-9) side = z_C.cross(Vec<3>::UnitX());  // looking straight down or up
-  const Vec<3> x_C0 = side.normalized();
-  const Vec<3> y_C0 = z_C.cross(x_C0);
-  const Vec<3> x_C = std::cos(roll_rad) * x_C0 + std::sin(roll_rad) * y_C0;
-  const Vec<3> y_C = z_C.cross(x_C);
-  Mat<3, 3> R;
-  R << x_C, y_C, z_C;
-  const Eigen::Quaterniond q(R);
-  Vec<13> x;
-  x << position, scale * Vec<4>(q.w(), q.x(), q.y(), q.z()), 0.3, -0.2, 0.1, 0.05, 0.1, -0.2;
-  return x;
-}
 
 // The IDR landmark, anchored at `anchor`, of the XYZ-R tree `tree`.
 Vec<7> idrOf(const Vec<4>& tree, const Vec<3>& anchor) {
@@ -776,7 +757,6 @@ namespace {
 
 using TreeEkf = Ekf<ConstantVelocity3D, InverseDepthRadius, TreeXYZR>;
 using Reference = testing::DenseReferenceEkf<ConstantVelocity3D>;
-
 
 // A camera 1.5 m above the ground looking along world +x and moving sideways along world +y
 // at 0.5 m/s; its velocity is known well (the scale of a monocular map comes from it).

@@ -3,6 +3,7 @@
 // Jacobian (eq. 3.27-3.32) against central differences and against automatic
 // differentiation of the closed form, and degenerate or invalid input.
 
+#include "camera_pose.hpp"
 #include "sylva_catch.hpp"
 
 #include <cmath>
@@ -22,31 +23,12 @@
 namespace unity_measurements_inverse_tree_width {
 
 using namespace sylva;
+using sylva_test::lookAt;
 using sylva::sim::Rng;
 
 namespace {
 
 const PinholeCamera kCamera{500.0, 480.0, 320.0, 240.0, 640, 480};
-
-// Camera at `position` looking at `target`, rolled about the optical axis; x right, y down.
-Vec<13> lookAt(const Vec<3>& position, const Vec<3>& target, double roll_rad = 0.0, double scale = 1.0) {
-  const Vec<3> z_C = (target - position).normalized();
-  Vec<3> side = z_C.cross(Vec<3>::UnitZ());
-  if (side.norm() < 1e-9) side = z_C.cross(Vec<3>::UnitX());  // looking straight down or up
-  const Vec<3> x_C0 = side.normalized();
-  const Vec<3> y_C0 = z_C.cross(x_C0);
-  const Vec<3> x_C = std::cos(roll_rad) * x_C0 + std::sin(roll_rad) * y_C0;
-  const Vec<3> y_C = z_C.cross(x_C);
-  Mat<3, 3> R;
-  R << x_C, y_C, z_C;
-  const Eigen::Quaterniond q(R);
-  Vec<13> x = Vec<13>::Zero();
-  x.head<3>() = position;
-  x.segment<4>(3) = scale * Vec<4>(q.w(), q.x(), q.y(), q.z());
-  x.segment<3>(7) = Vec<3>(0.4, 0.1, 0.0);
-  x.segment<3>(10) = Vec<3>(0.0, 0.2, 0.05);
-  return x;
-}
 
 struct Config {
   Vec<13> camera;

@@ -26,6 +26,7 @@
 #include <sylva/sim/random.hpp>
 #include <sylva/testing/check_jacobians.hpp>
 
+#include "camera_pose.hpp"
 #include "error_helpers.hpp"
 
 namespace {
@@ -53,6 +54,7 @@ void operator delete(void* p, const std::nothrow_t&) noexcept { std::free(p); }
 void operator delete[](void* p, const std::nothrow_t&) noexcept { std::free(p); }
 
 using namespace sylva;
+using sylva_test::lookAt;
 using sylva_test::throwsCode;
 
 namespace {
@@ -61,21 +63,6 @@ constexpr double kPiD = 3.14159265358979323846;
 const PinholeCamera kCamera{500.0, 480.0, 320.0, 240.0, 640, 480};
 using PointModel = PinholePoint<Point3>;
 using InverseDepthModel = PinholePoint<InverseDepth>;
-
-// Camera state at `position` looking at `target` (world z up; camera x right, y down), with
-// the stored quaternion multiplied by `scale` (the models normalize it) and nonzero
-// velocities (which must not enter the measurement).
-Vec<13> lookAt(const Vec<3>& position, const Vec<3>& target, double scale = 1.0) {
-  const Vec<3> z_C = (target - position).normalized();
-  const Vec<3> x_C = z_C.cross(Vec<3>::UnitZ()).normalized();
-  const Vec<3> y_C = z_C.cross(x_C);
-  Mat<3, 3> R;
-  R << x_C, y_C, z_C;
-  const Eigen::Quaterniond q(R);
-  Vec<13> x;
-  x << position, scale * Vec<4>(q.w(), q.x(), q.y(), q.z()), 0.3, -0.2, 0.1, 0.05, 0.1, -0.2;
-  return x;
-}
 
 // A camera at a random position with a uniformly random orientation and a random quaternion
 // scale in [0.2, 5].
@@ -298,7 +285,7 @@ TEST_CASE("PinholePoint Jacobians at awkward geometry", "[measurements][pinhole_
   }
   SECTION("quaternion far from unit norm") {
     for (double scale : {1e-3, 0.2, 7.0, 1e3}) {
-      const Vec<13> xs = lookAt(Vec<3>(1.0, -2.0, 1.5), Vec<3>(5.0, 3.0, 0.5), scale);
+      const Vec<13> xs = lookAt(Vec<3>(1.0, -2.0, 1.5), Vec<3>(5.0, 3.0, 0.5), 0.0, scale);
       const Vec<3> p = worldPoint(xs, Vec<3>(0.5, -0.4, 4.0));
       CHECK((point_model(xs, p) - point_model(x, p)).norm() < 1e-9);
       // The checker's step is 1e-6 absolute for |q_i| < 1, a relative step of 1e-3 on a
@@ -405,7 +392,7 @@ TEST_CASE("PinholePoint evaluates with Jacobians without allocating",
           "[measurements][pinhole_point][allocation]") {
   const PointModel point_model(kCamera);
   const InverseDepthModel id_model(kCamera);
-  const Vec<13> x = lookAt(Vec<3>(1.0, -2.0, 1.5), Vec<3>(5.0, 3.0, 0.5), 1.3);
+  const Vec<13> x = lookAt(Vec<3>(1.0, -2.0, 1.5), Vec<3>(5.0, 3.0, 0.5), 0.0, 1.3);
   const Vec<3> p = worldPoint(x, Vec<3>(0.5, -0.4, 4.0));
   const Vec<6> l = inverseDepthOf(Vec<3>(-3.0, 1.0, 2.0), p);
   Mat<2, 13> J_x;

@@ -3,6 +3,7 @@
 // differences and automatic differentiation at ordinary and awkward geometry, degenerate
 // and invalid input.
 
+#include "camera_pose.hpp"
 #include "sylva_catch.hpp"
 
 #include <algorithm>
@@ -27,36 +28,12 @@
 namespace unity_measurements_tree_width {
 
 using namespace sylva;
+using sylva_test::lookAt;
 
 namespace {
 
 constexpr double kPiD = 3.14159265358979323846;
 const PinholeCamera kCamera{500.0, 480.0, 320.0, 240.0, 640, 480};
-
-// Camera state looking from `position` towards `target` (world z up), rolled by `roll_rad`
-// about the optical axis; camera x right, y down. A nonzero `scale` multiplies the stored
-// quaternion (the model normalizes it).
-Vec<13> lookAt(const Vec<3>& position,
-               const Vec<3>& target,
-               double roll_rad = 0.0,
-               double scale = 1.0) {
-  const Vec<3> z_C = (target - position).normalized();
-  const Vec<3> x_C0 = z_C.cross(Vec<3>::UnitZ()).normalized();
-  const Vec<3> y_C0 = z_C.cross(x_C0);
-  const Vec<3> x_C = std::cos(roll_rad) * x_C0 + std::sin(roll_rad) * y_C0;
-  const Vec<3> y_C = z_C.cross(x_C);
-  Mat<3, 3> R;  // camera -> world: columns are the camera axes in the world frame
-  R.col(0) = x_C;
-  R.col(1) = y_C;
-  R.col(2) = z_C;
-  const Eigen::Quaterniond q(R);
-  Vec<13> x = Vec<13>::Zero();
-  x.head<3>() = position;
-  x.segment<4>(3) = scale * Vec<4>(q.w(), q.x(), q.y(), q.z());
-  x.segment<3>(7) = Vec<3>(0.3, -0.2, 0.1);  // velocities do not enter the measurement
-  x.segment<3>(10) = Vec<3>(0.05, 0.1, -0.2);
-  return x;
-}
 
 Vec<4> treeAt(double x, double y, double z, double r) { return Vec<4>(x, y, z, r); }
 
