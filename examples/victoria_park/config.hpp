@@ -12,9 +12,9 @@ namespace victoria_park {
 /// The four noise values of the robustness study (each x1.5, x1, /1.5: 81 settings).
 struct Noise {
   double speed_mps = 0.5;      ///< encoder speed, per 40 Hz odometry sample
-  double steering_rad = 0.03;  ///< steering angle, per 40 Hz odometry sample
+  double steering_rad = 0.01;  ///< steering angle, per 40 Hz odometry sample
   double range_m = 0.25;       ///< laser range to the trunk centre
-  double bearing_rad = 0.015;  ///< laser bearing (0.86 deg)
+  double bearing_rad = 0.03;   ///< laser bearing (1.7 deg)
 };
 
 struct Config {
@@ -34,7 +34,7 @@ struct Config {
   /// A reading that pairs with nothing starts or feeds a tentative track only if its NIS
   /// with every candidate landmark exceeds chi2(dim, this probability).
   double new_landmark_probability = 0.9999;
-  int confirm_sightings = 3;           ///< a tentative track becomes a landmark at this count
+  int confirm_sightings = 5;           ///< a tentative track becomes a landmark at this count
   double tentative_radius_m = 1.0;     ///< a reading feeds a tentative track this close
   double tentative_timeout_s = 2.0;    ///< a tentative track not seen for this long is dropped
   double duration_s = 0.0;             ///< 0: the whole run

@@ -88,6 +88,8 @@ struct GpsError {
   int valid = 0;
   int total = 0;
   Eigen::Matrix3d transform = Eigen::Matrix3d::Identity();  ///< map frame -> GPS frame
+  std::vector<double> fix_t_s, fix_error_m;                  ///< per fix inside the run
+  std::vector<char> fix_valid;
 };
 
 /// Aligns the estimated laser path to the valid fixes inside its time span and measures.
@@ -100,6 +102,7 @@ inline GpsError gpsError(const std::vector<TimedPoint>& laser_path,
   for (std::size_t i = 0; i < gps.size(); ++i) {
     if (gps[i].t_s < laser_path.front().t_s || gps[i].t_s > laser_path.back().t_s) continue;
     est_all.push_back(interpolate(laser_path, gps[i].t_s));
+    r.fix_t_s.push_back(gps[i].t_s);
     gps_all.push_back(Vec<2>(gps[i].x_m, gps[i].y_m));
     flag.push_back(valid[i]);
   }
@@ -120,6 +123,8 @@ inline GpsError gpsError(const std::vector<TimedPoint>& laser_path,
     const Vec<2> p = r.transform.topLeftCorner<2, 2>() * est_all[i] + r.transform.topRightCorner<2, 1>();
     const double e2 = (p - gps_all[i]).squaredNorm();
     sum_all += e2;
+    r.fix_error_m.push_back(std::sqrt(e2));
+    r.fix_valid.push_back(flag[i]);
     if (flag[i]) {
       sum_valid += e2;
       errors.push_back(std::sqrt(e2));

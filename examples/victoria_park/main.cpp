@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <atomic>
 #include <filesystem>
+#include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <thread>
@@ -124,6 +125,7 @@ int main(int argc, char** argv) {
   bool json = false, study = false;
   std::string svg_prefix, variants = "both";
   int threads = 2;
+  std::string errors_csv;
   app.add_option("--data", data_dir, "folder with measurements.dat, odometry.txt, gps.txt")->capture_default_str();
   app.add_flag("--json", json, "print the results as JSON");
   app.add_option("--svg-prefix", svg_prefix, "write <prefix>_point.svg and <prefix>_tree.svg");
@@ -140,6 +142,7 @@ int main(int argc, char** argv) {
   app.add_option("--sigma-bearing", cfg.noise.bearing_rad, "bearing noise (rad)")->check(sylva_examples::positive(false))->capture_default_str();
   app.add_option("--sigma-diameter", cfg.diameter_sigma_m, "diameter noise (m)")->check(sylva_examples::positive(false))->capture_default_str();
   app.add_option("--confirm", cfg.confirm_sightings, "sightings that confirm a new landmark")->check(CLI::Range(1, 100))->capture_default_str();
+  app.add_option("--errors-csv", errors_csv, "write <prefix>_<variant>.csv: time, aligned GPS error, valid flag per fix");
   app.add_flag("--robustness", study, "run the 81-setting noise study (every noise value x1.5, x1, /1.5)");
   app.add_option("--threads", threads, "threads for the robustness study")->check(CLI::Range(1, 64))->capture_default_str();
   CLI11_PARSE(app, argc, argv);
@@ -164,6 +167,12 @@ int main(int argc, char** argv) {
       if (!json) printTable(r);
       out[name] = toJson(r);
       if (!svg_prefix.empty()) writeSvg(svg_prefix + "_" + name + ".svg", r, data.gps, valid, title);
+      if (!errors_csv.empty()) {
+        std::ofstream f(errors_csv + "_" + name + ".csv");
+        f << "t_s,error_m,valid\n";
+        for (std::size_t i = 0; i < r.gps.fix_t_s.size(); ++i)
+          f << r.gps.fix_t_s[i] << "," << r.gps.fix_error_m[i] << "," << int(r.gps.fix_valid[i]) << "\n";
+      }
       if (study) {
         const Study s = robustness<V>(data, cfg, valid, threads);
         out[name]["robustness"] = {{"settings", s.rmse.size()}, {"diverged_over_5m", s.diverged},

@@ -21,7 +21,7 @@
 //   5. New landmarks: a reading that paired with nothing and whose NIS with every candidate
 //      exceeds chi2(dim, 0.9999) feeds the nearest tentative track within 1 m (world position
 //      from the inverse model at the current estimate) or starts one. A tentative track seen
-//      in 3 scans becomes a landmark, initialized from its latest reading; one not seen for
+//      in 5 scans becomes a landmark, initialized from its latest reading; one not seen for
 //      2 s is dropped. Readings in between the two gates are ambiguous and dropped.
 
 #include <algorithm>
