@@ -12,9 +12,9 @@ namespace victoria_park {
 /// The four noise values of the robustness study (each x1.5, x1, /1.5: 81 settings).
 struct Noise {
   double speed_mps = 0.5;      ///< encoder speed, per 40 Hz odometry sample
-  double steering_rad = 0.01;  ///< steering angle, per 40 Hz odometry sample
+  double steering_rad = 0.015; ///< steering angle, per 40 Hz odometry sample
   double range_m = 0.25;       ///< laser range to the trunk centre
-  double bearing_rad = 0.03;   ///< laser bearing (1.7 deg)
+  double bearing_rad = 0.04;   ///< laser bearing (2.3 deg)
 };
 
 struct Config {
