@@ -4,5 +4,6 @@
 #include "sylva/landmarks/inverse_depth_radius.hpp"
 #include "sylva/landmarks/point2.hpp"
 #include "sylva/landmarks/point3.hpp"
+#include "sylva/landmarks/tree_xyr.hpp"
 #include "sylva/landmarks/tree_xyzr.hpp"
 // IWYU pragma: end_exports

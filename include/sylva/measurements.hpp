@@ -6,5 +6,6 @@
 #include "sylva/measurements/pinhole_camera.hpp"
 #include "sylva/measurements/pinhole_point.hpp"
 #include "sylva/measurements/range_bearing.hpp"
+#include "sylva/measurements/range_bearing_diameter.hpp"
 #include "sylva/measurements/tree_width.hpp"
 // IWYU pragma: end_exports

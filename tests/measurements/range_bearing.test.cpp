@@ -102,4 +102,68 @@ TEST_CASE("degenerate and non-finite input is rejected with a reason", "[measure
   CHECK_THROWS_WITH(InverseRangeBearing{}(Vec<3>::Zero(), Vec<2>(1.0, INFINITY)), Contains("not finite"));
 }
 
+TEST_CASE("RangeBearing with a sensor mount: geometry, Jacobians, laws", "[measurements][jacobian][mount]") {
+  const Vec<2> mounts[] = {Vec<2>(3.78, 0.5), Vec<2>(3.78, -0.5), Vec<2>(-1.0, 0.0), Vec<2>(0.0, 2.0)};
+  for (const Vec<2>& m : mounts) {
+    const RangeBearing model(m);
+    const InverseRangeBearing inverse(m);
+    for (const Geometry& g : kGeometries) {
+      if (g.tolerance > 1e-6) continue;  // 1 mm from the robot is metres from the sensor
+      INFO(g.name << ", mount " << m.transpose());
+      // At 10 km the central-difference step (1e-6 of the coordinates) is metres: looser.
+      const double tolerance = g.landmark.norm() > 1e3 ? 1e-5 : 1e-6;
+      const auto report = testing::checkMeasurementJacobians(model, g.robot, g.landmark, tolerance);
+      INFO(report.message());
+      CHECK(report.ok);
+      Mat<2, 3> J_x, A_x;
+      Mat<2, 2> J_l, A_l;
+      model(g.robot, g.landmark, J_x, J_l);
+      const AutoDiff<RangeBearing> automatic(model);
+      automatic(g.robot, g.landmark, A_x, A_l);
+      CHECK((J_x - A_x).cwiseAbs().maxCoeff() <= 1e-11 * std::max(1.0, J_x.cwiseAbs().maxCoeff()));
+      CHECK((J_l - A_l).cwiseAbs().maxCoeff() <= 1e-11 * std::max(1.0, J_l.cwiseAbs().maxCoeff()));
+      // The range is measured from the sensor: s = p + R(theta) m.
+      const double c = std::cos(g.robot[2]);
+      const double s = std::sin(g.robot[2]);
+      const Vec<2> sensor(g.robot[0] + c * m[0] - s * m[1], g.robot[1] + s * m[0] + c * m[1]);
+      const Vec<2> z = model(g.robot, g.landmark);
+      CHECK(z[0] == Approx((g.landmark - sensor).norm()).epsilon(1e-12));
+      // Inverse then forward is the identity; the inverse Jacobians are right too.
+      const Vec<2> l = inverse(g.robot, z);
+      CHECK((l - g.landmark).norm() <= 1e-9 * std::max(1.0, g.landmark.norm()));
+      const auto inv = testing::checkInverseJacobians(inverse, g.robot, z, 1e-6);
+      INFO(inv.message());
+      CHECK(inv.ok);
+    }
+  }
+  // A car heading north with the laser 3.78 m ahead and 0.5 m to the left sees a tree 10 m
+  // ahead of the laser at bearing 0 and range 10.
+  const Vec<2> z = RangeBearing(Vec<2>(3.78, 0.5))(Vec<3>(0.0, 0.0, 0.5 * kPi), Vec<2>(-0.5, 13.78));
+  CHECK(z[0] == Approx(10.0));
+  CHECK(z[1] == Approx(0.0).margin(1e-12));
+  CHECK_THROWS_WITH(RangeBearing(Vec<2>(1.0, 0.0))(Vec<3>::Zero(), Vec<2>(1.0, 0.0)),
+                    Catch::Matchers::Contains("coincides with the sensor"));
+  CHECK_THROWS_WITH(RangeBearing(Vec<2>(NAN, 0.0)), Catch::Matchers::Contains("mount is not finite"));
+}
+
+TEST_CASE("a zero mount gives bit-identical results to the unmounted model", "[measurements][mount]") {
+  const RangeBearing plain;
+  const RangeBearing zero(Vec<2>::Zero());
+  for (const Geometry& g : kGeometries) {
+    Mat<2, 3> J_x, Z_x;
+    Mat<2, 2> J_l, Z_l;
+    const Vec<2> a = plain(g.robot, g.landmark, J_x, J_l);
+    const Vec<2> b = zero(g.robot, g.landmark, Z_x, Z_l);
+    CHECK((a.array() == b.array()).all());
+    CHECK((J_x.array() == Z_x.array()).all());
+    CHECK((J_l.array() == Z_l.array()).all());
+    Mat<2, 3> I_x, K_x;
+    Mat<2, 2> I_z, K_z;
+    const Vec<2> l1 = InverseRangeBearing{}(g.robot, a, I_x, I_z);
+    const Vec<2> l2 = InverseRangeBearing(Vec<2>::Zero())(g.robot, a, K_x, K_z);
+    CHECK((l1.array() == l2.array()).all());
+    CHECK((I_x.array() == K_x.array()).all());
+  }
+}
+
 }  // namespace unity_measurements_range_bearing

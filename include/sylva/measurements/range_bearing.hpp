@@ -20,11 +20,27 @@
 /// sensor; the model itself is defined all around). `residual` wraps the bearing
 /// difference so an innovation never jumps by 2 pi.
 ///
-/// Common mistakes: a landmark at the robot's position has no bearing; `RangeBearing`
-/// throws `ErrorCode::kDegenerateGeometry` for d < 1e-9 m rather than return garbage.
+/// Sensor mount. Both models take an optional sensor position m = [m_x, m_y] in the robot
+/// frame (x forward, y left; default zero), for a sensor whose axes are parallel to the
+/// robot's but which sits away from the robot's origin (the laser at the front corner of a
+/// car whose state is its rear axle). Range and bearing are then measured from the sensor
+/// position s = p_r + R(theta_r) m, the bearing still relative to the robot heading:
+///
+///   dx = x_l - s_x,  dy = y_l - s_y,   z as above
+///   J_z_x = [ -J_z_l  | -J_z_l ds/dtheta + (0, -1)^T ],  ds/dtheta = R'(theta_r) m
+///   l = s + r [cos(theta_r + b), sin(theta_r + b)],   J_l_x = [ I | ds/dtheta + r (-sin, cos)^T ]
+///
+/// With m = 0 (the default) the code takes the path without the mount, so results are
+/// bit-identical to the unmounted model and cost nothing extra.
+///
+/// Common mistakes: a landmark at the sensor's position has no bearing; `RangeBearing`
+/// throws `ErrorCode::kDegenerateGeometry` for d < 1e-9 m rather than return garbage. A
+/// mount given in the world frame, or a bearing measured from the sensor's own axis when the
+/// sensor is rotated (only a translated sensor is modelled here).
 
 #include <cmath>
 #include <sstream>
+#include <string>
 
 #include "sylva/core/angles.hpp"
 #include "sylva/core/error.hpp"
@@ -44,18 +60,40 @@ struct RangeBearing {
   /// Below this distance (m) the bearing is undefined.
   static constexpr double kMinRange = 1e-9;
 
+  RangeBearing() = default;
+  /// A sensor at `sensor_in_robot` (m, robot frame x forward, y left), axes parallel to the
+  /// robot's. Throws kNonFinite for a non-finite mount.
+  explicit RangeBearing(const Vec<2>& sensor_in_robot) : mount_(sensor_in_robot) {
+    if (!mount_.allFinite()) fail(ErrorCode::kNonFinite, "RangeBearing: the sensor mount is not finite");
+    mounted_ = !mount_.isZero(0.0);
+  }
+  const Vec<2>& mount() const { return mount_; }
+
+  /// The sensor position in the world frame, generic in the scalar.
+  template <typename T>
+  Vec<2, T> sensorPosition(const Vec<3, T>& robot) const {
+    if (!mounted_) return robot.template head<2>();
+    using std::cos;
+    using std::sin;
+    const T c = cos(robot[2]);
+    const T s = sin(robot[2]);
+    return Vec<2, T>(robot[0] + c * mount_[0] - s * mount_[1], robot[1] + s * mount_[0] + c * mount_[1]);
+  }
+
   /// Predicted [range, bearing] (eq. 2.16-2.17), generic in the scalar for autodiff.
   template <typename T>
   Vec<2, T> predict(const Vec<3, T>& robot, const Vec<2, T>& landmark) const {
     using std::atan2;
     using std::sqrt;
-    const T dx = landmark[0] - robot[0];
-    const T dy = landmark[1] - robot[1];
+    const Vec<2, T> sensor = sensorPosition(robot);
+    const T dx = landmark[0] - sensor[0];
+    const T dy = landmark[1] - sensor[1];
     const T d2 = dx * dx + dy * dy;
     if (!(scalarValue(d2) >= kMinRange * kMinRange)) {
       std::ostringstream os;
       os << "RangeBearing: landmark (" << scalarValue(landmark[0]) << ", "
-         << scalarValue(landmark[1]) << ") coincides with the robot position; bearing undefined";
+         << scalarValue(landmark[1]) << ") coincides with the " << (mounted_ ? "sensor" : "robot")
+         << " position; bearing undefined";
       fail(std::isfinite(scalarValue(d2)) ? ErrorCode::kDegenerateGeometry : ErrorCode::kNonFinite,
            os.str());
     }
@@ -71,13 +109,20 @@ struct RangeBearing {
                     JacobianRef<2, 3> J_z_x = {},
                     JacobianRef<2, 2> J_z_l = {}) const {
     const Vec<2> z = predict<double>(robot, landmark);
-    const double dx = landmark[0] - robot[0];
-    const double dy = landmark[1] - robot[1];
+    const Vec<2> sensor = sensorPosition<double>(robot);
+    const double dx = landmark[0] - sensor[0];
+    const double dy = landmark[1] - sensor[1];
     const double d = z[0];
     const double d2 = d * d;
     if (J_z_x) {
       *J_z_x << -dx / d, -dy / d, 0.0,  //
           dy / d2, -dx / d2, -1.0;
+      if (mounted_) {  // the sensor moves with theta: ds/dtheta = R'(theta) m
+        const double c = std::cos(robot[2]);
+        const double s = std::sin(robot[2]);
+        const Vec<2> ds(-s * mount_[0] - c * mount_[1], c * mount_[0] - s * mount_[1]);
+        (*J_z_x).col(2) += (*J_z_x).template leftCols<2>() * ds;
+      }
     }
     if (J_z_l) {
       *J_z_l << dx / d, dy / d,  //
@@ -90,16 +135,26 @@ struct RangeBearing {
   Vec<2> residual(const Vec<2>& z, const Vec<2>& z_hat) const {
     return Vec<2>(z[0] - z_hat[0], wrapAngle(z[1] - z_hat[1]));
   }
+
+ private:
+  Vec<2> mount_ = Vec<2>::Zero();
+  bool mounted_ = false;
 };
 
 /// Landmark initialization from one range-bearing measurement (eq. 2.33):
 ///   l = [x_r + r cos(theta_r + b), y_r + r sin(theta_r + b)]
-/// with `J_l_x` (2x3, eq. 2.37) and `J_l_z` (2x2, eq. 2.38).
+/// with `J_l_x` (2x3, eq. 2.37) and `J_l_z` (2x2, eq. 2.38); from the sensor position when
+/// a mount is given (see the file comment).
 struct InverseRangeBearing {
   using Robot = Pose2D;  // serves Unicycle2D, Odometry2D, ...
   using Landmark = Point2;
   static constexpr int kMeasurementDim = 2;
   static constexpr const char* kName = "InverseRangeBearing";
+
+  InverseRangeBearing() = default;
+  /// A sensor at `sensor_in_robot` (robot frame), as for `RangeBearing`.
+  explicit InverseRangeBearing(const Vec<2>& sensor_in_robot) : forward_(sensor_in_robot) {}
+  const Vec<2>& mount() const { return forward_.mount(); }
 
   Vec<2> operator()(const Vec<3>& robot,
                     const Vec<2>& z,
@@ -119,13 +174,24 @@ struct InverseRangeBearing {
     if (J_l_x) {
       *J_l_x << 1.0, 0.0, -r * s,  //
           0.0, 1.0, r * c;
+      if (!forward_.mount().isZero(0.0)) {
+        const double ct = std::cos(robot[2]);
+        const double st = std::sin(robot[2]);
+        const Vec<2>& m = forward_.mount();
+        (*J_l_x)(0, 2) += -st * m[0] - ct * m[1];
+        (*J_l_x)(1, 2) += ct * m[0] - st * m[1];
+      }
     }
     if (J_l_z) {
       *J_l_z << c, -r * s,  //
           s, r * c;
     }
-    return Vec<2>(robot[0] + r * c, robot[1] + r * s);
+    const Vec<2> sensor = forward_.sensorPosition<double>(robot);
+    return Vec<2>(sensor[0] + r * c, sensor[1] + r * s);
   }
+
+ private:
+  RangeBearing forward_;  ///< holds the mount and the sensor position
 };
 
 }  // namespace sylva

@@ -1,0 +1,193 @@
+// victoria_park: EKF-SLAM on the Victoria Park data set (ACFR; Guivant and Nebot 2001,
+// Guivant, Nebot and Baiker 2000): a car with a laser among trees, unknown association.
+//
+// Two variants on the same data and the same declared configuration (config.hpp):
+//   point  Ekf<Ackermann2D, Point2>   with RangeBearing         (range, bearing)
+//   tree   Ekf<Ackermann2D, TreeXYR>  with RangeBearingDiameter (range, bearing, diameter)
+// The run is described in slam_run.hpp, the GPS comparison in gps_error.hpp, and the whole
+// example in docs/examples/victoria-park.md.
+//
+// Output: a table per variant, --json for {"config": ..., "point": {...}, "tree": {...}},
+// --svg-prefix for a map per variant, --robustness for the 81-setting noise study
+// (each of the four noise values x1.5, x1, /1.5), run on --threads threads.
+// Without data at --data the program says where to get it and exits with status 77.
+
+#include <algorithm>
+#include <atomic>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <thread>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include "../common/cli_checks.hpp"
+#include "config.hpp"
+#include "gps_error.hpp"
+#include "slam_run.hpp"
+#include "svg.hpp"
+
+#ifndef VICTORIA_PARK_DEFAULT_DATA
+#define VICTORIA_PARK_DEFAULT_DATA "../shared/data/victoria-park"
+#endif
+
+namespace {
+
+using namespace victoria_park;
+constexpr int kSkipped = 77;  // ctest's SKIP_RETURN_CODE
+
+nlohmann::json toJson(const RunResult& r) {
+  return {{"gps_rmse_m", r.gps.rmse_valid_m},
+          {"gps_median_m", r.gps.median_valid_m},
+          {"gps_rmse_all_m", r.gps.rmse_all_m},
+          {"gps_max_valid_m", r.gps.max_valid_m},
+          {"gps_fixes_valid", r.gps.valid},
+          {"gps_fixes_total", r.gps.total},
+          {"landmarks", r.landmarks},
+          {"scans", r.scans},
+          {"predictions", r.predictions},
+          {"readings", r.readings},
+          {"readings_paired", r.paired},
+          {"readings_ambiguous", r.ambiguous},
+          {"readings_tentative", r.tentative_readings},
+          {"readings_refused", r.refused_updates},
+          {"runtime_s", r.runtime_s},
+          {"step_ms_end", r.step_ms_end},
+          {"step_ms_mean", r.step_ms_mean}};
+}
+
+void printTable(const RunResult& r) {
+  std::cout << std::fixed << std::setprecision(3) << r.variant << ": GPS RMS " << r.gps.rmse_valid_m
+            << " m (" << r.gps.valid << " valid of " << r.gps.total << " fixes), median " << r.gps.median_valid_m
+            << " m, max " << r.gps.max_valid_m << " m, all fixes " << r.gps.rmse_all_m << " m | landmarks "
+            << r.landmarks << " | readings " << r.readings << ", paired " << r.paired << ", ambiguous "
+            << r.ambiguous << ", tentative " << r.tentative_readings << ", refused " << r.refused_updates
+            << " | " << r.scans << " scans, " << r.predictions << " predictions, " << r.runtime_s << " s, "
+            << r.step_ms_end << " ms/scan at the end\n";
+}
+
+struct Study {
+  std::vector<double> rmse;
+  int diverged = 0;
+  double median = 0.0;
+  double worst = 0.0;
+  nlohmann::json runs = nlohmann::json::array();
+};
+
+/// The 81 settings: noise value i scaled by 1.5^(e_i), e_i in {-1, 0, 1}.
+template <class V>
+Study robustness(const sylva::datasets::VictoriaParkData& data, const Config& base, const std::vector<char>& valid,
+                 int threads) {
+  std::vector<Config> settings;
+  std::vector<std::array<int, 4>> exponents;
+  for (int a = -1; a <= 1; ++a)
+    for (int b = -1; b <= 1; ++b)
+      for (int c = -1; c <= 1; ++c)
+        for (int d = -1; d <= 1; ++d) {
+          Config cfg = base;
+          cfg.noise.speed_mps *= std::pow(1.5, a);
+          cfg.noise.steering_rad *= std::pow(1.5, b);
+          cfg.noise.range_m *= std::pow(1.5, c);
+          cfg.noise.bearing_rad *= std::pow(1.5, d);
+          settings.push_back(cfg);
+          exponents.push_back({a, b, c, d});
+        }
+  std::vector<RunResult> results(settings.size());
+  std::atomic<std::size_t> next{0};
+  std::vector<std::thread> pool;
+  for (int t = 0; t < threads; ++t)
+    pool.emplace_back([&] {
+      for (std::size_t i = next++; i < settings.size(); i = next++) results[i] = runSlam<V>(data, settings[i], valid);
+    });
+  for (auto& t : pool) t.join();
+  Study s;
+  for (std::size_t i = 0; i < results.size(); ++i) {
+    const double e = results[i].gps.rmse_valid_m;
+    s.rmse.push_back(e);
+    if (!(e <= 5.0)) ++s.diverged;
+    s.runs.push_back({{"scale_exponents", exponents[i]}, {"gps_rmse_m", e}, {"landmarks", results[i].landmarks}});
+  }
+  std::vector<double> sorted = s.rmse;
+  std::sort(sorted.begin(), sorted.end());
+  s.median = sorted[sorted.size() / 2];
+  s.worst = sorted.back();
+  return s;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"EKF-SLAM on the Victoria Park data set (point and tree landmarks, unknown association)"};
+  Config cfg;
+  std::string data_dir = VICTORIA_PARK_DEFAULT_DATA;
+  bool json = false, study = false;
+  std::string svg_prefix, variants = "both";
+  int threads = 2;
+  std::string errors_csv;
+  app.add_option("--data", data_dir, "folder with measurements.dat, odometry.txt, gps.txt")->capture_default_str();
+  app.add_flag("--json", json, "print the results as JSON");
+  app.add_option("--svg-prefix", svg_prefix, "write <prefix>_point.svg and <prefix>_tree.svg");
+  app.add_option("--variant", variants, "point, tree or both")->check(CLI::IsMember({"point", "tree", "both"}))->capture_default_str();
+  app.add_option("--duration", cfg.duration_s, "seconds of data to run (0: all)")->check(sylva_examples::positive(true))->capture_default_str();
+  app.add_option("--association", cfg.association, "jcbb or nn")->check(CLI::IsMember({"jcbb", "nn"}))->capture_default_str();
+  app.add_option("--predict", cfg.predict, "scan (integrate odometry between scans) or odometry (predict per sample)")
+      ->check(CLI::IsMember({"scan", "odometry"}))->capture_default_str();
+  app.add_option("--laser-left", cfg.laser_left_m, "laser lateral offset b (m, + = left)")->check(sylva_examples::finite(false))->capture_default_str();
+  app.add_option("--max-range", cfg.max_range_m, "detections farther away are ignored (m)")->check(sylva_examples::positive(false))->capture_default_str();
+  app.add_option("--sigma-speed", cfg.noise.speed_mps, "encoder speed noise per 40 Hz sample (m/s)")->check(sylva_examples::positive(false))->capture_default_str();
+  app.add_option("--sigma-steering", cfg.noise.steering_rad, "steering noise per 40 Hz sample (rad)")->check(sylva_examples::positive(false))->capture_default_str();
+  app.add_option("--sigma-range", cfg.noise.range_m, "range noise (m)")->check(sylva_examples::positive(false))->capture_default_str();
+  app.add_option("--sigma-bearing", cfg.noise.bearing_rad, "bearing noise (rad)")->check(sylva_examples::positive(false))->capture_default_str();
+  app.add_option("--sigma-diameter", cfg.diameter_sigma_m, "diameter noise (m)")->check(sylva_examples::positive(false))->capture_default_str();
+  app.add_option("--confirm", cfg.confirm_sightings, "sightings that confirm a new landmark")->check(CLI::Range(1, 100))->capture_default_str();
+  app.add_option("--errors-csv", errors_csv, "write <prefix>_<variant>.csv: time, aligned GPS error, valid flag per fix");
+  app.add_flag("--robustness", study, "run the 81-setting noise study (every noise value x1.5, x1, /1.5)");
+  app.add_option("--threads", threads, "threads for the robustness study")->check(CLI::Range(1, 64))->capture_default_str();
+  CLI11_PARSE(app, argc, argv);
+
+  if (!std::filesystem::exists(data_dir + "/measurements.dat")) {
+    std::cerr << "victoria_park: SKIPPED: no measurements.dat in '" << data_dir
+              << "'. The Victoria Park data set (ACFR, J. Guivant and E. Nebot) is not part of sylva: get "
+                 "measurements.dat (kykleung/RFS-SLAM, data/VictoriaPark), and odometry.txt and gps.txt converted "
+                 "from aa3_dr.mat and aa3_gpsx.mat (see docs/examples/victoria-park.md), then pass the folder "
+                 "with --data DIR.\n";
+    return kSkipped;
+  }
+  try {
+    const auto data = sylva::datasets::loadVictoriaPark(data_dir);
+    const std::vector<char> valid = validGpsFixes(data.gps, data.odometry, cfg.wheelbase_m, cfg.encoder_offset_m);
+    nlohmann::json out;
+    out["config"] = toJson(cfg);
+    out["data"] = data_dir;
+    const auto report = [&](auto variant, const char* name, const char* title) {
+      using V = decltype(variant);
+      const RunResult r = runSlam<V>(data, cfg, valid);
+      if (!json) printTable(r);
+      out[name] = toJson(r);
+      if (!svg_prefix.empty()) writeSvg(svg_prefix + "_" + name + ".svg", r, data.gps, valid, title);
+      if (!errors_csv.empty()) {
+        std::ofstream f(errors_csv + "_" + name + ".csv");
+        f << "t_s,error_m,valid\n";
+        for (std::size_t i = 0; i < r.gps.fix_t_s.size(); ++i)
+          f << r.gps.fix_t_s[i] << "," << r.gps.fix_error_m[i] << "," << int(r.gps.fix_valid[i]) << "\n";
+      }
+      if (study) {
+        const Study s = robustness<V>(data, cfg, valid, threads);
+        out[name]["robustness"] = {{"settings", s.rmse.size()}, {"diverged_over_5m", s.diverged},
+                                   {"median_gps_rmse_m", s.median}, {"worst_gps_rmse_m", s.worst}, {"runs", s.runs}};
+        if (!json)
+          std::cout << "  robustness (" << s.rmse.size() << " settings): " << s.diverged << " diverged (> 5 m), median "
+                    << s.median << " m, worst " << s.worst << " m\n";
+      }
+    };
+    if (variants != "tree") report(PointVariant{}, "point", "Victoria Park, EKF-SLAM with point landmarks (range, bearing)");
+    if (variants != "point") report(TreeVariant{}, "tree", "Victoria Park, EKF-SLAM with tree landmarks (range, bearing, diameter)");
+    if (json) std::cout << out.dump(2) << "\n";
+  } catch (const sylva::Error& e) {
+    std::cerr << "victoria_park: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}

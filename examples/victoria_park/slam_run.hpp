@@ -1,0 +1,334 @@
+#pragma once
+// One EKF-SLAM run over the Victoria Park data, for either variant:
+//   PointVariant  Ekf<Ackermann2D, Point2>   with RangeBearing        z = [range, bearing]
+//   TreeVariant   Ekf<Ackermann2D, TreeXYR>  with RangeBearingDiameter z = [range, bearing, diameter]
+// Both measure from the laser, mounted at (L + a, b) in the rear-axle frame.
+//
+// Per laser scan (the scan is the only event that changes the map):
+//   1. Predict to the scan time with the odometry since the previous scan. "scan" (default):
+//      the samples are integrated into one step: the distance D = sum v_c dt_i and the
+//      heading change Phi = sum omega dt_i of the samples (zero-order hold, the last segment
+//      cut at the scan time) define the constant control [v_e, alpha] over T = sum dt_i with
+//      the same D and Phi, and the per-sample control noise is scaled by dt_s / T (independent
+//      per-sample errors add up). "odometry": one filter prediction per sample segment, the
+//      same scaling. The mean differs by the chord-vs-arc error of a 0.2 s step (mm).
+//   2. Candidates: map landmarks whose predicted range is below max range + 5 m and whose
+//      bearing is within 100 deg of the car's axis (the laser sees 180 deg ahead).
+//   3. Association of the readings (range <= max range) with the candidates: JCBB (default)
+//      or nearest neighbour, chi-square gate 0.99.
+//   4. One batched update with every paired reading (`Fusion::kBatched`). If the filter
+//      refuses the batch, the readings are fused one at a time and the refused ones skipped.
+//   5. New landmarks: a reading that paired with nothing and whose NIS with every candidate
+//      exceeds chi2(dim, 0.9999) feeds the nearest tentative track within 1 m (world position
+//      from the inverse model at the current estimate) or starts one. A tentative track seen
+//      in 5 scans becomes a landmark, initialized from its latest reading; one not seen for
+//      2 s is dropped. Readings in between the two gates are ambiguous and dropped.
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <optional>
+#include <vector>
+
+#include <sylva/association.hpp>
+#include <sylva/consistency/chi_square.hpp>
+#include <sylva/datasets/victoria_park.hpp>
+#include <sylva/filter/ekf.hpp>
+#include <sylva/landmarks.hpp>
+#include <sylva/measurements.hpp>
+#include <sylva/motion/ackermann_2d.hpp>
+
+#include "config.hpp"
+#include "gps_error.hpp"
+
+namespace victoria_park {
+
+using sylva::Gaussian;
+using sylva::Id;
+using sylva::Mat;
+namespace ds = sylva::datasets;
+
+struct PointVariant {
+  static constexpr const char* kName = "point";
+  using Landmark = sylva::Point2;
+  using Model = sylva::RangeBearing;
+  using Inverse = sylva::InverseRangeBearing;
+  static constexpr int kDim = 2;
+  static Vec<2> measurement(const ds::VictoriaParkDetection& d) { return Vec<2>(d.range_m, ds::carBearing(d)); }
+  static Gaussian<2> noise(const Config& c) { return Gaussian<2>::sigmas(Vec<2>(c.noise.range_m, c.noise.bearing_rad)); }
+  static double radius(const Vec<2>&) { return 0.0; }
+};
+
+struct TreeVariant {
+  static constexpr const char* kName = "tree";
+  using Landmark = sylva::TreeXYR;
+  using Model = sylva::RangeBearingDiameter;
+  using Inverse = sylva::InverseRangeBearingDiameter;
+  static constexpr int kDim = 3;
+  static Vec<3> measurement(const ds::VictoriaParkDetection& d) {
+    return Vec<3>(d.range_m, ds::carBearing(d), d.diameter_m);
+  }
+  static Gaussian<3> noise(const Config& c) {
+    return Gaussian<3>::sigmas(Vec<3>(c.noise.range_m, c.noise.bearing_rad, c.diameter_sigma_m));
+  }
+  static double radius(const Vec<3>& l) { return l[2]; }
+};
+
+struct MapLandmark {
+  Vec<2> p;          ///< in the GPS frame after alignment
+  double radius_m;   ///< 0 for points
+  int sightings;
+};
+
+struct RunResult {
+  std::string variant;
+  GpsError gps;
+  int landmarks = 0;
+  long scans = 0;
+  long predictions = 0;
+  long readings = 0;           ///< detections within the max range
+  long paired = 0;             ///< fused into the map
+  long ambiguous = 0;          ///< unpaired but too close to a landmark to start a new one
+  long tentative_readings = 0; ///< fed or started a tentative track
+  long tentatives_dropped = 0;
+  long refused_updates = 0;    ///< readings the filter refused after a refused batch
+  double runtime_s = 0.0;
+  double step_ms_end = 0.0;    ///< mean time per scan over the last 100 scans
+  double step_ms_mean = 0.0;
+  std::vector<TimedPoint> laser_path;  ///< in the GPS frame after alignment
+  std::vector<MapLandmark> map;        ///< in the GPS frame after alignment
+};
+
+namespace detail {
+
+/// Integrates odometry up to time t, either into the filter one sample at a time or into one
+/// step (see the file comment).
+template <class Filter>
+class OdometryIntegrator {
+ public:
+  OdometryIntegrator(const std::vector<ds::VictoriaParkOdometry>& odometry, const Config& c, const sylva::Ackermann2D& car)
+      : odo_(odometry), cfg_(c), car_(car),
+        q_sample_(Vec<2>(c.noise.speed_mps * c.noise.speed_mps, c.noise.steering_rad * c.noise.steering_rad).asDiagonal()) {
+    t_ = odometry.front().t_s;
+  }
+
+  /// Moves the filter to time t; returns the number of filter predictions made.
+  long advanceTo(Filter& ekf, double t) {
+    long predictions = 0;
+    double distance = 0.0, turn = 0.0, span = 0.0, alpha_sum = 0.0;
+    while (t_ < t - 1e-9) {
+      while (next_ < odo_.size() && odo_[next_].t_s <= t_ + 1e-9) ++next_;
+      if (next_ == 0) {  // before the first sample: the car stands still
+        t_ = std::min(t, odo_.front().t_s);
+        continue;
+      }
+      const ds::VictoriaParkOdometry& o = odo_[next_ - 1];
+      const double end = next_ < odo_.size() ? std::min(t, odo_[next_].t_s) : t;
+      const double dt = end - t_;
+      t_ = end;
+      if (dt <= 1e-9) continue;
+      if (cfg_.predict == "odometry") {
+        ekf.predict(Vec<2>(o.speed_mps, o.steering_rad), dt, noiseFor(dt));
+        ++predictions;
+      } else {
+        double v_c = 0.0, omega = 0.0;
+        car_.axleMotion(o.speed_mps, o.steering_rad, v_c, omega);
+        distance += v_c * dt;
+        turn += omega * dt;
+        span += dt;
+        alpha_sum += o.steering_rad * dt;
+      }
+    }
+    if (span > 1e-9) {
+      const double v_c = distance / span;
+      const double omega = turn / span;
+      double alpha = alpha_sum / span;
+      if (std::abs(v_c) > 1e-3) alpha = std::atan(car_.wheelbase() * omega / v_c);
+      const double v_e = v_c * (1.0 - std::tan(alpha) * car_.encoderOffset() / car_.wheelbase());
+      ekf.predict(Vec<2>(v_e, alpha), span, noiseFor(span));
+      ++predictions;
+    }
+    return predictions;
+  }
+
+ private:
+  Gaussian<2> noiseFor(double dt) const {
+    return Gaussian<2>::covariance(q_sample_ * (cfg_.odometry_period_s / dt));
+  }
+  const std::vector<ds::VictoriaParkOdometry>& odo_;
+  const Config& cfg_;
+  sylva::Ackermann2D car_;
+  Mat<2, 2> q_sample_;
+  std::size_t next_ = 0;
+  double t_ = 0.0;
+};
+
+struct Tentative {
+  Vec<2> p;
+  int count;
+  double last_t;
+};
+
+}  // namespace detail
+
+template <class V>
+RunResult runSlam(const ds::VictoriaParkData& data, const Config& cfg, const std::vector<char>& gps_valid) {
+  using Filter = sylva::Ekf<sylva::Ackermann2D, typename V::Landmark>;
+  using Model = typename V::Model;
+  constexpr int M = V::kDim;
+  using Clock = std::chrono::steady_clock;
+
+  const sylva::Ackermann2D car(cfg.wheelbase_m, cfg.encoder_offset_m);
+  const Vec<2> mount(cfg.wheelbase_m + cfg.laser_ahead_m, cfg.laser_left_m);
+  const Model model(mount);
+  const typename V::Inverse inverse(mount);
+  const Gaussian<M> R = V::noise(cfg);
+  const double new_gate = sylva::chiSquareGate(M, cfg.new_landmark_probability);
+
+  Filter ekf(Vec<3>::Zero(), Mat<3, 3>::Zero(), car);
+  ekf.reserve(V::Landmark::kDim * 512);
+  detail::OdometryIntegrator<Filter> odometry(data.odometry, cfg, car);
+
+  RunResult out;
+  out.variant = V::kName;
+  std::vector<detail::Tentative> tentatives;
+  std::vector<int> sightings;  // per landmark id
+  std::vector<TimedPoint> path;
+  std::vector<double> step_ms;
+  std::vector<Vec<M>> z;
+  std::vector<Id> candidates;
+  std::vector<sylva::Observation<Model>> observations;
+  const double t_start = data.scans.front().t_s;
+  const auto run_begin = Clock::now();
+
+  for (const ds::VictoriaParkScan& scan : data.scans) {
+    if (cfg.duration_s > 0.0 && scan.t_s > t_start + cfg.duration_s) break;
+    const auto step_begin = Clock::now();
+    out.predictions += odometry.advanceTo(ekf, scan.t_s);
+    ++out.scans;
+
+    z.clear();
+    for (const auto& d : scan.detections)
+      if (d.range_m <= cfg.max_range_m) z.push_back(V::measurement(d));
+    out.readings += static_cast<long>(z.size());
+
+    // Candidates: landmarks in front of the laser and within range.
+    candidates.clear();
+    const Vec<3> x = ekf.robotMean();
+    const Vec<2> sensor = sylva::RangeBearing(mount).sensorPosition<double>(x);
+    for (const sylva::LandmarkSlot& s : ekf.slots()) {
+      const Vec<2> l = ekf.template landmarkMean<typename V::Landmark>(s.id).template head<2>();
+      const Vec<2> d = l - sensor;
+      if (d.norm() > cfg.max_range_m + 5.0) continue;
+      const double bearing = sylva::wrapAngle(std::atan2(d.y(), d.x()) - x[2]);
+      if (std::abs(bearing) > 100.0 * sylva::kPi / 180.0) continue;
+      candidates.push_back(s.id);
+    }
+
+    std::vector<std::optional<Id>> pairing(z.size());
+    if (!z.empty() && !candidates.empty())
+      pairing = cfg.association == "nn"
+                    ? sylva::associateNearestNeighbor(ekf, model, z, R, candidates, cfg.gate_probability)
+                    : sylva::associateJcbb(ekf, model, z, R, candidates, cfg.gate_probability);
+
+    // Which unpaired readings are far from every landmark (computed before the update).
+    std::vector<char> is_new(z.size(), 0);
+    for (std::size_t i = 0; i < z.size(); ++i) {
+      if (pairing[i]) continue;
+      bool clear = true;
+      for (const Id id : candidates) {
+        const auto inn = ekf.innovation(model, id, z[i], R);
+        if (inn.nu.dot(inn.S.ldlt().solve(inn.nu)) < new_gate) {
+          clear = false;
+          break;
+        }
+      }
+      is_new[i] = clear ? 1 : 0;
+      if (!clear) ++out.ambiguous;
+    }
+
+    observations.clear();
+    for (std::size_t i = 0; i < z.size(); ++i)
+      if (pairing[i]) observations.push_back(sylva::Observation<Model>{*pairing[i], z[i], R});
+    if (!observations.empty()) {
+      try {
+        ekf.update(model, observations);
+        out.paired += static_cast<long>(observations.size());
+      } catch (const sylva::Error&) {
+        for (const auto& o : observations) {
+          try {
+            ekf.update(model, o.id, o.z, o.noise);
+            ++out.paired;
+          } catch (const sylva::Error&) {
+            ++out.refused_updates;
+          }
+        }
+      }
+      for (const auto& o : observations) ++sightings[static_cast<std::size_t>(o.id)];
+    }
+
+    // Tentative tracks and new landmarks, at the updated estimate.
+    for (std::size_t i = 0; i < z.size(); ++i) {
+      if (!is_new[i]) continue;
+      ++out.tentative_readings;
+      const Vec<2> p = sylva::InverseRangeBearing(mount)(ekf.robotMean(), Vec<2>(z[i].template head<2>()));
+      detail::Tentative* best = nullptr;
+      double best_d = cfg.tentative_radius_m;
+      for (auto& t : tentatives) {
+        const double d = (t.p - p).norm();
+        if (d <= best_d && t.last_t < scan.t_s) {
+          best_d = d;
+          best = &t;
+        }
+      }
+      if (!best) {
+        tentatives.push_back(detail::Tentative{p, 1, scan.t_s});
+        best = &tentatives.back();
+      } else {
+        best->p = p;
+        best->count += 1;
+        best->last_t = scan.t_s;
+      }
+      if (best->count >= cfg.confirm_sightings) {
+        const Id id = static_cast<Id>(sightings.size());
+        try {
+          ekf.add(id, inverse, z[i], R);
+          sightings.push_back(1);
+        } catch (const sylva::Error&) {
+          ++out.refused_updates;
+        }
+        best->count = -1;  // consumed
+      }
+    }
+    const std::size_t before = tentatives.size();
+    tentatives.erase(std::remove_if(tentatives.begin(), tentatives.end(),
+                                    [&](const detail::Tentative& t) {
+                                      return t.count < 0 || scan.t_s - t.last_t > cfg.tentative_timeout_s;
+                                    }),
+                     tentatives.end());
+    (void)before;
+
+    const Vec<3> xr = ekf.robotMean();
+    path.push_back(TimedPoint{scan.t_s, sylva::RangeBearing(mount).sensorPosition<double>(xr)});
+    step_ms.push_back(std::chrono::duration<double, std::milli>(Clock::now() - step_begin).count());
+  }
+  out.runtime_s = std::chrono::duration<double>(Clock::now() - run_begin).count();
+  const std::size_t tail = std::min<std::size_t>(100, step_ms.size());
+  double sum = 0.0;
+  for (std::size_t i = step_ms.size() - tail; i < step_ms.size(); ++i) sum += step_ms[i];
+  out.step_ms_end = tail ? sum / static_cast<double>(tail) : 0.0;
+  out.step_ms_mean = step_ms.empty() ? 0.0 : 1e3 * out.runtime_s / static_cast<double>(step_ms.size());
+  out.landmarks = ekf.landmarkCount();
+
+  out.gps = gpsError(path, data.gps, gps_valid);
+  const Eigen::Matrix3d& T = out.gps.transform;
+  const auto toGps = [&](const Vec<2>& p) { return Vec<2>(T.topLeftCorner<2, 2>() * p + T.topRightCorner<2, 1>()); };
+  for (const TimedPoint& tp : path) out.laser_path.push_back(TimedPoint{tp.t_s, toGps(tp.p)});
+  for (const sylva::LandmarkSlot& s : ekf.slots()) {
+    const auto l = ekf.template landmarkMean<typename V::Landmark>(s.id);
+    out.map.push_back(MapLandmark{toGps(l.template head<2>()), V::radius(l), sightings[static_cast<std::size_t>(s.id)]});
+  }
+  return out;
+}
+
+}  // namespace victoria_park
