@@ -51,6 +51,10 @@
 /// tilt acts over one chord at most: its bearing variance is capped at delta^2 / 12 (uniform
 /// over one chord), an approximation that the Monte Carlo test bounds at 1 deg bearing noise.
 ///
+/// Plus the model error of a surface that bends between the two beams (a corner):
+/// (bend_fraction r increment)^2 on the range variance (option, default 0.3; the thesis
+/// covers it with its worst-case sigma_r).
+///
 /// For a surface seen head-on dr/dphi = 0 and R is diagonal, diag(sigma_r^2, sigma_theta^2),
 /// the thesis' eq. 3.5; at oblique incidence the bearing error moves the range along the
 /// surface and the off-diagonal term carries that correlation. (The thesis uses worst-case
@@ -95,6 +99,11 @@ struct LaserCameraOptions {
   double max_incidence_rad = 80.0 * kPi / 180.0;  ///< in (0, pi/2]
   double plane_margin = 0.01;                  ///< tolerance of step 6 (normalized image units), >= 0
   bool near_side_at_jumps = false;             ///< step 4: extrapolate the nearer surface
+  /// Model error of eq. 3.4' where the surface bends between the two beams (a corner, the
+  /// very place vertical edges stand): the chord cuts the bend by up to about the distance
+  /// between the two beam spots, r * increment. Its standard deviation is taken as
+  /// bend_fraction * r * increment, added to the range variance (0: flat surfaces only).
+  double bend_fraction = 0.3;
 };
 
 /// A vertical line detected in the image.
@@ -244,6 +253,8 @@ class LaserCameraSensor {
     out.z = Vec<2>(ir.range_m, wrapAngle(theta));
     out.covariance(0, 0) =
         J[0] * J[0] * var_theta + (J[1] * J[1] + J[2] * J[2]) * var_reading + var_slope * var_theta_on_chord;
+    const double bend = options_.bend_fraction * ir.range_m * scan_.angle_increment_rad;
+    out.covariance(0, 0) += bend * bend;
     out.covariance(0, 1) = out.covariance(1, 0) = J[0] * var_theta;
     out.covariance(1, 1) = var_theta;
     out.status = LaserCameraStatus::kOk;
@@ -295,6 +306,8 @@ class LaserCameraSensor {
       os << "LaserCameraSensor: max_jump_m must be finite and > 0, got " << o.max_jump_m;
     } else if (!(o.max_incidence_rad > 0.0) || !(o.max_incidence_rad <= 0.5 * kPi)) {
       os << "LaserCameraSensor: max_incidence_rad must be in (0, pi/2], got " << o.max_incidence_rad;
+    } else if (!std::isfinite(o.bend_fraction) || !(o.bend_fraction >= 0.0)) {
+      os << "LaserCameraSensor: bend_fraction must be finite and >= 0, got " << o.bend_fraction;
     } else if (!std::isfinite(o.plane_margin) || !(o.plane_margin >= 0.0)) {
       os << "LaserCameraSensor: plane_margin must be finite and >= 0, got " << o.plane_margin;
     } else {

@@ -83,6 +83,7 @@ TEST_CASE("LaserCameraSensor covariance matches a Monte Carlo estimate", "[measu
   o.sigma_bearing_rad = 0.1 * kDeg;  // the bearing stays between the same two beams
   o.sigma_reading_m = 0.02;
   o.max_jump_m = 1.0;
+  o.bend_fraction = 0.0;  // a flat wall: no model error
   const LaserCameraSensor sensor(g, {}, o);
   const double normal = -40.0 * kDeg;
   const double bearing = 10.0 * kDeg + 0.37 * g.angle_increment_rad;
@@ -121,6 +122,7 @@ TEST_CASE("LaserCameraSensor covariance stays near a Monte Carlo estimate at 1 d
   LaserScanGeometry g;
   LaserCameraOptions o;  // 1 deg, 1 cm
   o.max_jump_m = 0.3;    // at 50 deg incidence 4-sigma reading noise would reach 0.1 m
+  o.bend_fraction = 0.0;
   const LaserCameraSensor sensor(g, {}, o);
   for (double normal : {0.0, -40.0 * kDeg}) {
     const double bearing = 10.0 * kDeg + 0.37 * g.angle_increment_rad;
@@ -149,9 +151,15 @@ TEST_CASE("LaserCameraSensor covariance stays near a Monte Carlo estimate at 1 d
 TEST_CASE("LaserCameraSensor covariance is the thesis' diagonal eq. 3.5 for a wall seen head-on",
           "[measurements][laser_camera]") {
   LaserScanGeometry g;
-  const LaserCameraSensor sensor(g);
+  LaserCameraOptions o;
+  o.bend_fraction = 0.0;
+  const LaserCameraSensor sensor(g, {}, o);
   const auto scan = wallScan(g, 0.0, 3.0);
   const auto m = sensor.measure(fullLine(0.25 * g.angle_increment_rad), scan);
+  const LaserCameraSensor with_bend(g);  // default: + (0.3 r increment)^2
+  const double bend = 0.3 * m.z[0] * g.angle_increment_rad;
+  CHECK(with_bend.measure(fullLine(0.25 * g.angle_increment_rad), scan).covariance(0, 0) ==
+        Approx(m.covariance(0, 0) + bend * bend).epsilon(1e-12));
   REQUIRE(m.ok());
   CHECK(std::abs(m.covariance(0, 1)) < 0.05 * std::sqrt(m.covariance(0, 0) * m.covariance(1, 1)));
   // Interpolating two readings: ((1-t)^2 + t^2) sigma_reading^2 to first order, plus the
@@ -289,6 +297,7 @@ TEST_CASE("LaserCameraSensor refuses bad input and bad options", "[measurements]
   CHECK(withOptions([](LaserCameraOptions& o) { o.max_jump_m = 0.0; }));
   CHECK(withOptions([](LaserCameraOptions& o) { o.max_incidence_rad = 2.0; }));
   CHECK(withOptions([](LaserCameraOptions& o) { o.plane_margin = -1.0; }));
+  CHECK(withOptions([](LaserCameraOptions& o) { o.bend_fraction = -0.1; }));
 }
 
 }  // namespace unity_measurements_laser_camera_sensor
