@@ -115,8 +115,7 @@ void writePictures(const std::string& prefix, const Simulation& sim, const std::
   map.start_pose = Vec<3>::Zero();
   map.true_final_pose = sim.steps.back().true_pose;
   const Vec<3> e = fused.records.back().error;
-  map.estimated_final_pose = sylva::Unicycle2D::difference(map.true_final_pose, Vec<3>::Zero()) - e;  // true - error
-  map.estimated_final_pose = map.true_final_pose - e;
+  map.estimated_final_pose = map.true_final_pose - e;  // error = true - estimate
   map.final_position_covariance = Mat<2, 2>::Zero();
   map.final_position_covariance.diagonal() = fused.records.back().sigma.head<2>().cwiseAbs2();
   map.sensor_range_fov = Vec<2>(8.0, 30.0 * kDeg);
