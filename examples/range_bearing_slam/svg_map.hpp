@@ -11,6 +11,7 @@
 #include <iomanip>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Eigenvalues>
@@ -41,6 +42,7 @@ struct SvgMapData {
   Vec<3> estimated_final_pose;
   Mat<2, 2> final_position_covariance;
   Vec<2> sensor_range_fov;  ///< [max range m, half angle rad], drawn at the final pose
+  std::vector<std::pair<Vec<2>, Vec<2>>> walls;  ///< optional wall segments, drawn grey
 };
 
 namespace detail {
@@ -296,6 +298,10 @@ inline void writeSvgMap(const std::string& file, const SvgMapData& d) {
         << num(r * scale) << " 0 " << (half > 0.5 * 3.14159265358979323846 ? 1 : 0) << " 0 "
         << num(main.px(b.x())) << " " << num(main.py(b.y())) << "Z\" class=\"fov\"/>\n";
   }
+  for (const auto& w : d.walls)
+    svg << "<line x1=\"" << num(main.px(w.first.x())) << "\" y1=\"" << num(main.py(w.first.y())) << "\" x2=\""
+        << num(main.px(w.second.x())) << "\" y2=\"" << num(main.py(w.second.y()))
+        << "\" stroke=\"#9a9a9a\" stroke-width=\"3\"/>\n";
   svg << polyline(main, d.odometry_path, "class=\"odopath\"");
   svg << polyline(main, d.true_path, "class=\"truepath\"");
   svg << polyline(main, d.estimated_path, "class=\"estpath\"");

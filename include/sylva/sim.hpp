@@ -19,5 +19,6 @@
 #include "sylva/sim/range_bearing_sensor.hpp"
 #include "sylva/sim/tree_forest.hpp"
 #include "sylva/sim/tree_observer.hpp"
+#include "sylva/sim/vertical_edge_camera.hpp"
 #include "sylva/sim/walking_person_2d.hpp"
 // IWYU pragma: end_exports
