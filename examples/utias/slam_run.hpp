@@ -1,0 +1,220 @@
+#pragma once
+// One EKF-SLAM run over one robot's data: sylva::Ekf<Unicycle2D, Point2> with RangeBearing
+// and InverseRangeBearing, stepped from event to event.
+//
+// Events are the odometry commands and the measurement times, merged in time order. A
+// command logged at time t takes effect at t + command_delay_s (the robots follow their
+// commands about 0.2 s late; see noise_model.hpp). Between
+// two events the filter predicts with the latest command (zero before the first one) and the
+// control noise of NoiseConfig; at a command it takes the new command; at a measurement time
+// it fuses all landmark observations of that time in one batched update. The filter starts
+// at the first Vicon sample with covariance diag(initial_sigma^2), so its frame is the Vicon
+// frame up to that small uncertainty. Observations of the other robots are not used, and
+// neither are the misread barcodes (the loader keeps both out of landmark_observations).
+//
+// Known correspondences: the barcode names the landmark. An observation of a mapped landmark
+// whose NIS exceeds the chi-square gate (outlier_gate_probability, 2 dof) is rejected as an
+// outlier; the first observation of a landmark adds it.
+//
+// Unknown correspondences (JCBB): the barcodes are not used for pairing. Candidates are the
+// mapped landmarks whose predicted reading lies within candidate_range_m and
+// candidate_half_fov_rad; associateJcbb pairs the observations of one time with them. The
+// declared rule for new landmarks: an unpaired observation becomes a new landmark when its
+// NIS to every candidate exceeds the chi-square quantile new_landmark_probability (2 dof);
+// otherwise it is ambiguous and dropped. The barcodes are kept only to score the pairings:
+// a landmark is labelled with the barcode's subject of the observation that created it.
+
+#include <chrono>
+#include <limits>
+#include <map>
+#include <optional>
+#include <vector>
+
+#include <sylva/association/jcbb.hpp>
+#include <sylva/consistency/chi_square.hpp>
+#include <sylva/datasets/utias_mrclam.hpp>
+#include <sylva/filter/ekf.hpp>
+#include <sylva/landmarks/point2.hpp>
+#include <sylva/measurements/range_bearing.hpp>
+#include <sylva/motion/unicycle_2d.hpp>
+
+#include "noise_model.hpp"
+
+namespace utias {
+
+using sylva::Id;
+using sylva::Mat;
+using Filter = sylva::Ekf<sylva::Unicycle2D, sylva::Point2>;
+
+enum class Association { kKnown, kJcbb };
+
+/// The filter's estimate just after one event.
+struct Sample {
+  double time_s;
+  Vec<3> pose;
+  Mat<3, 3> covariance;
+};
+
+struct MappedLandmark {
+  Id id;
+  int subject;  ///< known: the barcode's subject; JCBB: that of the observation that created it
+  Vec<2> mean;
+  Mat<2, 2> covariance;
+};
+
+struct AssociationCounts {
+  long observations = 0;  ///< landmark observations offered to the filter
+  long gated_out = 0;     ///< known ids: rejected by the outlier gate
+  long paired = 0;        ///< fused into a mapped landmark
+  long correct = 0;       ///< JCBB: paired with a landmark of the same subject
+  long wrong = 0;         ///< JCBB: paired with a landmark of another subject
+  long added = 0;         ///< new landmarks
+  long duplicates = 0;    ///< JCBB: new landmark of a subject already mapped
+  long ambiguous = 0;     ///< JCBB: unpaired but too close to a candidate to add
+};
+
+struct RunResult {
+  std::vector<Sample> samples;
+  std::vector<Vec<3>> dead_reckoning;  ///< commands integrated from the start, at each sample
+  std::vector<MappedLandmark> landmarks;
+  AssociationCounts counts;
+  double runtime_s = 0.0;
+};
+
+namespace detail {
+
+/// Mapped landmarks whose predicted reading is within the configured reach (JCBB candidates).
+inline std::vector<Id> candidates(const Filter& ekf, const NoiseConfig& c) {
+  std::vector<Id> out;
+  const Vec<3> x = ekf.robotMean();
+  for (const sylva::LandmarkSlot& s : ekf.slots()) {
+    const Vec<2> d = ekf.landmarkMean<sylva::Point2>(s.id) - x.head<2>();
+    const double range = d.norm();
+    if (range > c.candidate_range_m || range < 1e-6) continue;
+    if (std::abs(sylva::wrapAngle(std::atan2(d.y(), d.x()) - x[2])) > c.candidate_half_fov_rad) continue;
+    out.push_back(s.id);
+  }
+  return out;
+}
+
+}  // namespace detail
+
+/// Runs the filter over `robot`'s data up to `max_time_s` (relative time; <= 0: all).
+inline RunResult runSlam(const sylva::datasets::UtiasRobotData& robot,
+                         const NoiseConfig& config,
+                         Association association,
+                         double max_time_s = 0.0) {
+  using sylva::datasets::UtiasObservation;
+  const auto start_clock = std::chrono::steady_clock::now();
+  const sylva::RangeBearing model;
+  const sylva::InverseRangeBearing inverse;
+  const sylva::Unicycle2D unicycle;
+  const sylva::Gaussian<2> R = config.measurementNoise();
+  const double outlier_gate = sylva::chiSquareGate(2, config.outlier_gate_probability);
+  const double new_gate = sylva::chiSquareGate(2, config.new_landmark_probability);
+
+  const auto& first = robot.groundtruth.front();
+  const Mat<3, 3> P0 = config.initial_sigma.cwiseAbs2().asDiagonal();
+  Filter ekf(first.pose, P0);
+  ekf.reserve(2 * 32);
+  Vec<3> dead = first.pose;
+  double t = first.time_s;
+  Vec<2> u = Vec<2>::Zero();
+  std::map<Id, int> subject_of;  // filter id -> label subject
+  Id next_id = 1000;             // JCBB ids, apart from subject numbers
+
+  RunResult out;
+  const auto& cmds = robot.odometry;
+  const auto& obs = robot.landmark_observations;
+  out.samples.reserve(cmds.size() + obs.size());
+  const double end = max_time_s > 0.0 ? first.time_s + max_time_s : std::numeric_limits<double>::infinity();
+  std::size_t i = 0, j = 0;
+  std::vector<sylva::Observation<sylva::RangeBearing>> paired;
+  std::vector<const UtiasObservation*> group;
+  std::vector<Vec<2>> z;
+  while (i < cmds.size() || j < obs.size()) {
+    const double delay = config.command_delay_s;
+    const bool command = j == obs.size() || (i < cmds.size() && cmds[i].time_s + delay <= obs[j].time_s);
+    const double te = command ? cmds[i].time_s + delay : obs[j].time_s;
+    if (te > end) break;
+    if (te > t) {
+      const sylva::Gaussian<2> Q = config.controlNoise(u, te - t);
+      ekf.predict(u, te - t, Q);
+      dead = unicycle(dead, u, te - t);
+      t = te;
+    }
+    if (command) {
+      u = cmds[i++].u;
+    } else {
+      group.clear();
+      while (j < obs.size() && obs[j].time_s == te) group.push_back(&obs[j++]);
+      out.counts.observations += static_cast<long>(group.size());
+      paired.clear();
+      if (association == Association::kKnown) {
+        std::vector<const UtiasObservation*> fresh;
+        for (const UtiasObservation* o : group) {
+          const Id id = o->subject;
+          if (!ekf.contains(id)) {
+            fresh.push_back(o);
+          } else if (ekf.innovation(model, id, o->z, R).nis() > outlier_gate) {
+            ++out.counts.gated_out;
+          } else {
+            paired.push_back({id, o->z, R});
+          }
+        }
+        ekf.update(model, paired);
+        out.counts.paired += static_cast<long>(paired.size());
+        for (const UtiasObservation* o : fresh) {
+          if (ekf.contains(o->subject)) {  // seen twice in one image: the second one updates
+            ekf.update(model, Id(o->subject), o->z, R);
+            ++out.counts.paired;
+            continue;
+          }
+          ekf.add(o->subject, inverse, o->z, R);
+          subject_of[o->subject] = o->subject;
+          ++out.counts.added;
+        }
+      } else {
+        z.clear();
+        for (const UtiasObservation* o : group) z.push_back(o->z);
+        const std::vector<Id> cands = detail::candidates(ekf, config);
+        const std::vector<std::optional<Id>> pairing =
+            sylva::associateJcbb(ekf, model, z, R, cands, config.jcbb_gate_probability);
+        std::vector<std::size_t> to_add;
+        for (std::size_t k = 0; k < group.size(); ++k) {
+          if (pairing[k]) {
+            paired.push_back({*pairing[k], z[k], R});
+            ++out.counts.paired;
+            ++(subject_of.at(*pairing[k]) == group[k]->subject ? out.counts.correct : out.counts.wrong);
+            continue;
+          }
+          double closest = std::numeric_limits<double>::infinity();
+          for (const Id c : cands) closest = std::min(closest, ekf.innovation(model, c, z[k], R).nis());
+          if (closest > new_gate)
+            to_add.push_back(k);
+          else
+            ++out.counts.ambiguous;
+        }
+        ekf.update(model, paired);
+        for (const std::size_t k : to_add) {
+          bool seen = false;
+          for (const auto& entry : subject_of) seen = seen || entry.second == group[k]->subject;
+          out.counts.duplicates += seen ? 1 : 0;
+          const Id id = next_id++;
+          ekf.add(id, inverse, z[k], R);
+          subject_of[id] = group[k]->subject;
+          ++out.counts.added;
+        }
+      }
+    }
+    out.samples.push_back({t, ekf.robotMean(), ekf.robotCovariance()});
+    out.dead_reckoning.push_back(dead);
+  }
+  for (const sylva::LandmarkSlot& s : ekf.slots())
+    out.landmarks.push_back({s.id, subject_of.at(s.id), ekf.landmarkMean<sylva::Point2>(s.id),
+                             ekf.landmarkCovariance<sylva::Point2>(s.id)});
+  out.runtime_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_clock).count();
+  return out;
+}
+
+}  // namespace utias
