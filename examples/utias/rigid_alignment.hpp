@@ -40,15 +40,17 @@ inline Rigid2 alignRigid2(const std::vector<Vec<2>>& estimated, const std::vecto
                 "alignRigid2: need the same number (>= 2) of estimated and true points, got " +
                     std::to_string(estimated.size()) + " and " + std::to_string(truth.size()));
   const auto n = static_cast<Eigen::Index>(truth.size());
-  Eigen::Matrix2Xd src(2, n), dst(2, n);
+  // Dynamic-size matrices: with Matrix2Xd g++ 12 warns (-Wstringop-overread, a false
+  // positive) inside Eigen::umeyama's fixed-size 2-vector code.
+  Eigen::MatrixXd src(2, n), dst(2, n);
   for (Eigen::Index i = 0; i < n; ++i) {
     src.col(i) = estimated[static_cast<std::size_t>(i)];
     dst.col(i) = truth[static_cast<std::size_t>(i)];
   }
-  const Mat<3, 3> T = Eigen::umeyama(src, dst, false);
+  const Eigen::MatrixXd T = Eigen::umeyama(src, dst, false);  // 3 x 3 homogeneous
   Rigid2 out;
-  out.rotation = T.topLeftCorner<2, 2>();
-  out.translation = T.topRightCorner<2, 1>();
+  out.rotation = T.topLeftCorner(2, 2);
+  out.translation = T.topRightCorner(2, 1);
   return out;
 }
 
