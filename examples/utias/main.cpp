@@ -77,11 +77,14 @@ double r4(double v) { return std::round(v * 1e4) / 1e4; }
 
 json configJson(const utias::NoiseConfig& c) {
   return json{{"command_delay_s", c.command_delay_s},
+              {"v_gain", c.v_gain},
+              {"omega_gain", c.omega_gain},
               {"v_scale_per_sqrt_s", c.v_scale},
               {"v_floor_m_per_sqrt_s", c.v_floor},
               {"omega_scale_per_sqrt_s", c.omega_scale},
               {"omega_floor_rad_per_sqrt_s", c.omega_floor},
               {"sigma_range_m", c.sigma_range_m},
+              {"sigma_range_per_m", c.sigma_range_per_m},
               {"sigma_bearing_rad", c.sigma_bearing_rad},
               {"initial_sigma", {c.initial_sigma[0], c.initial_sigma[1], c.initial_sigma[2]}},
               {"outlier_gate_probability", c.outlier_gate_probability},
@@ -314,7 +317,16 @@ int main(int argc, char** argv) {
   app.add_option("--command-delay", c.command_delay_s, "a command logged at t acts from t + this (s)")
       ->check(positive(true))
       ->capture_default_str();
-  app.add_option("--sigma-range", c.sigma_range_m, "range noise (m)")->check(positive(false))->capture_default_str();
+  app.add_option("--v-gain", c.v_gain, "the robot drives this x the commanded speed")
+      ->check(positive(false))
+      ->capture_default_str();
+  app.add_option("--omega-gain", c.omega_gain, "the robot turns this x the commanded turn rate")
+      ->check(positive(false))
+      ->capture_default_str();
+  app.add_option("--sigma-range", c.sigma_range_m, "range noise at zero range (m)")->check(positive(false))->capture_default_str();
+  app.add_option("--sigma-range-per-m", c.sigma_range_per_m, "range noise added per metre of range (m/m)")
+      ->check(positive(true))
+      ->capture_default_str();
   app.add_option("--sigma-bearing", c.sigma_bearing_rad, "bearing noise (rad)")
       ->check(positive(false))
       ->capture_default_str();

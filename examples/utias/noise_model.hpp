@@ -40,11 +40,14 @@ using sylva::Vec;
 
 struct NoiseConfig {
   double command_delay_s = 0.2;   ///< a command logged at t acts from t + delay on
+  double v_gain = 1.0;            ///< the robot drives v_gain x the commanded speed
+  double omega_gain = 1.0;        ///< ... and turns omega_gain x the commanded turn rate
   double v_scale = 0.13;          ///< k_v (1 / sqrt(s))
   double v_floor = 0.002;         ///< s_v (m / sqrt(s))
   double omega_scale = 0.15;      ///< k_w (1 / sqrt(s))
   double omega_floor = 0.01;     ///< s_w (rad / sqrt(s))
-  double sigma_range_m = 0.13;
+  double sigma_range_m = 0.13;       ///< range sigma at zero range (m)
+  double sigma_range_per_m = 0.0;    ///< ... plus this per metre of measured range
   double sigma_bearing_rad = 0.01;
   Vec<3> initial_sigma = Vec<3>(0.01, 0.01, 0.01);  ///< P0 around the first Vicon pose (m, m, rad)
   double outlier_gate_probability = 0.999;  ///< known ids: an observation with NIS above this chi2(2) quantile is rejected
@@ -60,8 +63,12 @@ struct NoiseConfig {
     return sylva::Gaussian<2>::sigmas(Vec<2>(sv, sw) / std::sqrt(dt));
   }
 
-  sylva::Gaussian<2> measurementNoise() const {
-    return sylva::Gaussian<2>::sigmas(Vec<2>(sigma_range_m, sigma_bearing_rad));
+  /// The motion a logged command produces (calibration of the commands, see above).
+  Vec<2> effectiveCommand(const Vec<2>& logged) const { return Vec<2>(v_gain * logged[0], omega_gain * logged[1]); }
+
+  /// The noise of a reading at measured range `range_m`.
+  sylva::Gaussian<2> measurementNoise(double range_m) const {
+    return sylva::Gaussian<2>::sigmas(Vec<2>(sigma_range_m + sigma_range_per_m * range_m, sigma_bearing_rad));
   }
 };
 

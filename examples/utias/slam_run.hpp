@@ -24,6 +24,7 @@
 // otherwise it is ambiguous and dropped. The barcodes are kept only to score the pairings:
 // a landmark is labelled with the barcode's subject of the observation that created it.
 
+#include <algorithm>
 #include <chrono>
 #include <limits>
 #include <map>
@@ -109,7 +110,6 @@ inline RunResult runSlam(const sylva::datasets::UtiasRobotData& robot,
   const sylva::RangeBearing model;
   const sylva::InverseRangeBearing inverse;
   const sylva::Unicycle2D unicycle;
-  const sylva::Gaussian<2> R = config.measurementNoise();
   const double outlier_gate = sylva::chiSquareGate(2, config.outlier_gate_probability);
   const double new_gate = sylva::chiSquareGate(2, config.new_landmark_probability);
 
@@ -144,7 +144,7 @@ inline RunResult runSlam(const sylva::datasets::UtiasRobotData& robot,
       t = te;
     }
     if (command) {
-      u = cmds[i++].u;
+      u = config.effectiveCommand(cmds[i++].u);
     } else {
       group.clear();
       while (j < obs.size() && obs[j].time_s == te) group.push_back(&obs[j++]);
@@ -154,6 +154,7 @@ inline RunResult runSlam(const sylva::datasets::UtiasRobotData& robot,
         std::vector<const UtiasObservation*> fresh;
         for (const UtiasObservation* o : group) {
           const Id id = o->subject;
+          const sylva::Gaussian<2> R = config.measurementNoise(o->z[0]);
           if (!ekf.contains(id)) {
             fresh.push_back(o);
           } else if (ekf.innovation(model, id, o->z, R).nis() > outlier_gate) {
@@ -165,6 +166,7 @@ inline RunResult runSlam(const sylva::datasets::UtiasRobotData& robot,
         ekf.update(model, paired);
         out.counts.paired += static_cast<long>(paired.size());
         for (const UtiasObservation* o : fresh) {
+          const sylva::Gaussian<2> R = config.measurementNoise(o->z[0]);
           if (ekf.contains(o->subject)) {  // seen twice in one image: the second one updates
             ekf.update(model, Id(o->subject), o->z, R);
             ++out.counts.paired;
@@ -176,7 +178,13 @@ inline RunResult runSlam(const sylva::datasets::UtiasRobotData& robot,
         }
       } else {
         z.clear();
-        for (const UtiasObservation* o : group) z.push_back(o->z);
+        double farthest = 0.0;
+        for (const UtiasObservation* o : group) {
+          z.push_back(o->z);
+          farthest = std::max(farthest, o->z[0]);
+        }
+        // associateJcbb takes one noise for the image: that of its farthest reading.
+        const sylva::Gaussian<2> R = config.measurementNoise(farthest);
         const std::vector<Id> cands = detail::candidates(ekf, config);
         const std::vector<std::optional<Id>> pairing =
             sylva::associateJcbb(ekf, model, z, R, cands, config.jcbb_gate_probability);
