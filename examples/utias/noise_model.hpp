@@ -49,6 +49,7 @@ struct NoiseConfig {
   double sigma_range_m = 0.13;       ///< range sigma at zero range (m)
   double sigma_range_per_m = 0.0;    ///< ... plus this per metre of measured range
   double sigma_bearing_rad = 0.01;
+  double landmark_interval_s = 0.0;  ///< fuse a landmark at most once per this many seconds (0: every reading)
   Vec<3> initial_sigma = Vec<3>(0.01, 0.01, 0.01);  ///< P0 around the first Vicon pose (m, m, rad)
   double outlier_gate_probability = 0.999;  ///< known ids: an observation with NIS above this chi2(2) quantile is rejected
   double jcbb_gate_probability = 0.99;      ///< individual and joint gates of JCBB

@@ -72,6 +72,7 @@ struct AssociationCounts {
   long added = 0;         ///< new landmarks
   long duplicates = 0;    ///< JCBB: new landmark of a subject already mapped
   long ambiguous = 0;     ///< JCBB: unpaired but too close to a candidate to add
+  long thinned = 0;       ///< not fused: the landmark was fused less than landmark_interval_s before
 };
 
 struct RunResult {
@@ -121,6 +122,11 @@ inline RunResult runSlam(const sylva::datasets::UtiasRobotData& robot,
   double t = first.time_s;
   Vec<2> u = Vec<2>::Zero();
   std::map<Id, int> subject_of;  // filter id -> label subject
+  std::map<Id, double> last_fused;  // filter id -> time of its last fused reading
+  auto due = [&](Id id, double now) {
+    const auto it = last_fused.find(id);
+    return it == last_fused.end() || now - it->second >= config.landmark_interval_s - 1e-9;
+  };
   Id next_id = 1000;             // JCBB ids, apart from subject numbers
 
   RunResult out;
@@ -157,6 +163,8 @@ inline RunResult runSlam(const sylva::datasets::UtiasRobotData& robot,
           const sylva::Gaussian<2> R = config.measurementNoise(o->z[0]);
           if (!ekf.contains(id)) {
             fresh.push_back(o);
+          } else if (!due(id, te)) {
+            ++out.counts.thinned;
           } else if (ekf.innovation(model, id, o->z, R).nis() > outlier_gate) {
             ++out.counts.gated_out;
           } else {
@@ -164,15 +172,16 @@ inline RunResult runSlam(const sylva::datasets::UtiasRobotData& robot,
           }
         }
         ekf.update(model, paired);
+        for (const auto& p : paired) last_fused[p.id] = te;
         out.counts.paired += static_cast<long>(paired.size());
         for (const UtiasObservation* o : fresh) {
           const sylva::Gaussian<2> R = config.measurementNoise(o->z[0]);
-          if (ekf.contains(o->subject)) {  // seen twice in one image: the second one updates
-            ekf.update(model, Id(o->subject), o->z, R);
-            ++out.counts.paired;
+          if (ekf.contains(o->subject)) {  // seen twice in one image: the first one is enough
+            ++out.counts.thinned;
             continue;
           }
           ekf.add(o->subject, inverse, o->z, R);
+          last_fused[o->subject] = te;
           subject_of[o->subject] = o->subject;
           ++out.counts.added;
         }
@@ -191,6 +200,10 @@ inline RunResult runSlam(const sylva::datasets::UtiasRobotData& robot,
         std::vector<std::size_t> to_add;
         for (std::size_t k = 0; k < group.size(); ++k) {
           if (pairing[k]) {
+            if (!due(*pairing[k], te)) {
+              ++out.counts.thinned;
+              continue;
+            }
             paired.push_back({*pairing[k], z[k], R});
             ++out.counts.paired;
             ++(subject_of.at(*pairing[k]) == group[k]->subject ? out.counts.correct : out.counts.wrong);
@@ -204,12 +217,14 @@ inline RunResult runSlam(const sylva::datasets::UtiasRobotData& robot,
             ++out.counts.ambiguous;
         }
         ekf.update(model, paired);
+        for (const auto& p : paired) last_fused[p.id] = te;
         for (const std::size_t k : to_add) {
           bool seen = false;
           for (const auto& entry : subject_of) seen = seen || entry.second == group[k]->subject;
           out.counts.duplicates += seen ? 1 : 0;
           const Id id = next_id++;
           ekf.add(id, inverse, z[k], R);
+          last_fused[id] = te;
           subject_of[id] = group[k]->subject;
           ++out.counts.added;
         }
