@@ -78,6 +78,7 @@ double r4(double v) { return std::round(v * 1e4) / 1e4; }
 
 json configJson(const utias::NoiseConfig& c) {
   return json{{"command_delay_s", c.command_delay_s},
+              {"command_jitter_s", c.command_jitter_s},
               {"v_gain", c.v_gain},
               {"omega_gain", c.omega_gain},
               {"v_scale_per_sqrt_s", c.v_scale},
@@ -366,6 +367,10 @@ int main(int argc, char** argv) {
                "the configuration given and print one line per setting (how the default was chosen)");
   auto& c = o.noise;
   app.add_option("--command-delay", c.command_delay_s, "a command logged at t acts from t + this (s)")
+      ->check(positive(true))
+      ->capture_default_str();
+  app.add_option("--command-jitter", c.command_jitter_s,
+                 "timing uncertainty of a command change (s): adds |delta u| x this to the pose")
       ->check(positive(true))
       ->capture_default_str();
   app.add_option("--v-gain", c.v_gain, "the robot drives this x the commanded speed")

@@ -46,6 +46,7 @@ struct NoiseConfig {
   double v_floor = 0.002;         ///< s_v (m / sqrt(s))
   double omega_scale = 0.15;      ///< k_w (1 / sqrt(s))
   double omega_floor = 0.01;     ///< s_w (rad / sqrt(s))
+  double command_jitter_s = 0.0;  ///< timing uncertainty of a command change: adds |delta u| x this to the pose
   double sigma_range_m = 0.13;       ///< range sigma at zero range (m)
   double sigma_range_per_m = 0.0;    ///< ... plus this per metre of measured range
   double sigma_bearing_rad = 0.01;

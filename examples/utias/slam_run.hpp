@@ -121,6 +121,7 @@ inline RunResult runSlam(const sylva::datasets::UtiasRobotData& robot,
   Vec<3> dead = first.pose;
   double t = first.time_s;
   Vec<2> u = Vec<2>::Zero();
+  Vec<2> jitter = Vec<2>::Zero();  // pending pose effect of command changes (see command_jitter_s)
   std::map<Id, int> subject_of;  // filter id -> label subject
   std::map<Id, double> last_fused;  // filter id -> time of its last fused reading
   auto due = [&](Id id, double now) {
@@ -144,13 +145,22 @@ inline RunResult runSlam(const sylva::datasets::UtiasRobotData& robot,
     const double te = command ? cmds[i].time_s + delay : obs[j].time_s;
     if (te > end) break;
     if (te > t) {
-      const sylva::Gaussian<2> Q = config.controlNoise(u, te - t);
+      sylva::Gaussian<2> Q = config.controlNoise(u, te - t);
+      if (jitter.squaredNorm() > 0.0) {
+        // The last command change happened at an uncertain time: its effect on the pose is
+        // |delta u| x command_jitter_s, put on this step's control noise.
+        const double dt = te - t;
+        Q = sylva::Gaussian<2>::variances(Q.covariance().diagonal() + jitter.cwiseAbs2() / (dt * dt));
+        jitter.setZero();
+      }
       ekf.predict(u, te - t, Q);
       dead = unicycle(dead, u, te - t);
       t = te;
     }
     if (command) {
-      u = config.effectiveCommand(cmds[i++].u);
+      const Vec<2> next = config.effectiveCommand(cmds[i++].u);
+      jitter += (next - u).cwiseAbs() * config.command_jitter_s;
+      u = next;
     } else {
       group.clear();
       while (j < obs.size() && obs[j].time_s == te) group.push_back(&obs[j++]);
