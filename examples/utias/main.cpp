@@ -80,7 +80,9 @@ json configJson(const utias::NoiseConfig& c) {
   return json{{"command_delay_s", c.command_delay_s},
               {"command_jitter_s", c.command_jitter_s},
               {"v_gain", c.v_gain},
+              {"v_turn_loss_m_per_rad", c.v_turn_loss},
               {"omega_gain", c.omega_gain},
+              {"omega_bias_radps", c.omega_bias},
               {"v_scale_per_sqrt_s", c.v_scale},
               {"v_floor_m_per_sqrt_s", c.v_floor},
               {"omega_scale_per_sqrt_s", c.omega_scale},
@@ -379,6 +381,10 @@ int main(int argc, char** argv) {
   app.add_option("--omega-gain", c.omega_gain, "the robot turns this x the commanded turn rate")
       ->check(positive(false))
       ->capture_default_str();
+  app.add_option("--v-turn-loss", c.v_turn_loss, "speed lost per rad/s of turn rate while driving (m/rad)")
+      ->check(positive(true))
+      ->capture_default_str();
+  app.add_option("--omega-bias", c.omega_bias, "added to the commanded turn rate (rad/s)")->capture_default_str();
   app.add_option("--sigma-range", c.sigma_range_m, "range noise at zero range (m)")->check(positive(false))->capture_default_str();
   app.add_option("--sigma-range-per-m", c.sigma_range_per_m, "range noise added per metre of range (m/m)")
       ->check(positive(true))

@@ -29,6 +29,7 @@
 // the residuals lie beyond 3 robust sigmas (misdetections, partly seen tags), which a
 // chi-square gate on the NIS (probability 0.999, NIS 13.8) keeps out of the filter.
 
+#include <algorithm>
 #include <cmath>
 
 #include <sylva/core/types.hpp>
@@ -40,16 +41,18 @@ using sylva::Vec;
 
 struct NoiseConfig {
   double command_delay_s = 0.2;   ///< a command logged at t acts from t + delay on
-  double v_gain = 1.0;            ///< the robot drives v_gain x the commanded speed
-  double omega_gain = 1.0;        ///< ... and turns omega_gain x the commanded turn rate
+  double v_gain = 1.04;            ///< the robot drives v_gain x the commanded speed ...
+  double v_turn_loss = 0.092;       ///< ... less this x |omega| when driving (m/rad: wheel speed saturation)
+  double omega_gain = 0.93;        ///< ... and turns omega_gain x the commanded turn rate ...
+  double omega_bias = -0.002;        ///< ... plus this (rad/s)
   double v_scale = 0.13;          ///< k_v (1 / sqrt(s))
   double v_floor = 0.002;         ///< s_v (m / sqrt(s))
   double omega_scale = 0.15;      ///< k_w (1 / sqrt(s))
   double omega_floor = 0.01;     ///< s_w (rad / sqrt(s))
-  double command_jitter_s = 0.0;  ///< timing uncertainty of a command change: adds |delta u| x this to the pose
-  double sigma_range_m = 0.13;       ///< range sigma at zero range (m)
-  double sigma_range_per_m = 0.0;    ///< ... plus this per metre of measured range
-  double sigma_bearing_rad = 0.01;
+  double command_jitter_s = 0.2;  ///< timing uncertainty of a command change: adds |delta u| x this to the pose
+  double sigma_range_m = 0.1;        ///< range sigma at zero range (m)
+  double sigma_range_per_m = 0.1;    ///< ... plus this per metre of measured range
+  double sigma_bearing_rad = 0.02;
   double landmark_interval_s = 0.0;  ///< fuse a landmark at most once per this many seconds (0: every reading)
   Vec<3> initial_sigma = Vec<3>(0.01, 0.01, 0.01);  ///< P0 around the first Vicon pose (m, m, rad)
   double outlier_gate_probability = 0.999;  ///< known ids: an observation with NIS above this chi2(2) quantile is rejected
@@ -66,7 +69,10 @@ struct NoiseConfig {
   }
 
   /// The motion a logged command produces (calibration of the commands, see above).
-  Vec<2> effectiveCommand(const Vec<2>& logged) const { return Vec<2>(v_gain * logged[0], omega_gain * logged[1]); }
+  Vec<2> effectiveCommand(const Vec<2>& logged) const {
+    const double v = logged[0] > 0.0 ? std::max(0.0, v_gain * logged[0] - v_turn_loss * std::abs(logged[1])) : v_gain * logged[0];
+    return Vec<2>(v, omega_gain * logged[1] + omega_bias);
+  }
 
   /// The noise of a reading at measured range `range_m`.
   sylva::Gaussian<2> measurementNoise(double range_m) const {
