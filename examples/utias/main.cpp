@@ -232,9 +232,9 @@ int noiseStudy(const Options& o, const sylva::datasets::UtiasDataset& data) {
 /// docs/examples/utias.md.
 int configurationStudy(const Options& o, const sylva::datasets::UtiasDataset& data) {
   const double process_scales[] = {0.5, 1.0, 2.0};
-  const double range_scales[] = {0.5, 1.0, 1.5};
-  const double bearing_sigmas[] = {0.015, 0.02, 0.03};
-  const double omega_gains[] = {1.0, o.noise.omega_gain};
+  const double range_scales[] = {0.5, 0.75, 1.0, 1.5};
+  const double bearing_sigmas[] = {0.02, 0.03, 0.05};
+  const double omega_gains[] = {o.noise.omega_gain};
   std::cout << "process range bearing omega_gain | Vicon mean worst | aligned mean worst | landmark worst | NEES min max | "
                "targets met (of 6)\n";
   for (const double og : omega_gains)

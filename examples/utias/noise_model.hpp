@@ -45,14 +45,14 @@ struct NoiseConfig {
   double v_turn_loss = 0.092;       ///< ... less this x |omega| when driving (m/rad: wheel speed saturation)
   double omega_gain = 0.93;        ///< ... and turns omega_gain x the commanded turn rate ...
   double omega_bias = -0.002;        ///< ... plus this (rad/s)
-  double v_scale = 0.13;          ///< k_v (1 / sqrt(s))
-  double v_floor = 0.002;         ///< s_v (m / sqrt(s))
-  double omega_scale = 0.15;      ///< k_w (1 / sqrt(s))
-  double omega_floor = 0.01;     ///< s_w (rad / sqrt(s))
+  double v_scale = 0.26;          ///< k_v (1 / sqrt(s))
+  double v_floor = 0.004;         ///< s_v (m / sqrt(s))
+  double omega_scale = 0.30;      ///< k_w (1 / sqrt(s))
+  double omega_floor = 0.02;     ///< s_w (rad / sqrt(s))
   double command_jitter_s = 0.2;  ///< timing uncertainty of a command change: adds |delta u| x this to the pose
-  double sigma_range_m = 0.1;        ///< range sigma at zero range (m)
-  double sigma_range_per_m = 0.1;    ///< ... plus this per metre of measured range
-  double sigma_bearing_rad = 0.02;
+  double sigma_range_m = 0.2;        ///< range sigma at zero range (m)
+  double sigma_range_per_m = 0.2;    ///< ... plus this per metre of measured range
+  double sigma_bearing_rad = 0.03;
   double landmark_interval_s = 0.0;  ///< fuse a landmark at most once per this many seconds (0: every reading)
   Vec<3> initial_sigma = Vec<3>(0.01, 0.01, 0.01);  ///< P0 around the first Vicon pose (m, m, rad)
   double outlier_gate_probability = 0.999;  ///< known ids: an observation with NIS above this chi2(2) quantile is rejected
@@ -71,7 +71,8 @@ struct NoiseConfig {
   /// The motion a logged command produces (calibration of the commands, see above).
   Vec<2> effectiveCommand(const Vec<2>& logged) const {
     const double v = logged[0] > 0.0 ? std::max(0.0, v_gain * logged[0] - v_turn_loss * std::abs(logged[1])) : v_gain * logged[0];
-    return Vec<2>(v, omega_gain * logged[1] + omega_bias);
+    const bool stopped = logged[0] == 0.0 && logged[1] == 0.0;  // a stopped robot does not drift
+    return Vec<2>(v, stopped ? 0.0 : omega_gain * logged[1] + omega_bias);
   }
 
   /// The noise of a reading at measured range `range_m`.
