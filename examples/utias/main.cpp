@@ -208,7 +208,30 @@ int noiseStudy(const Options& o, const sylva::datasets::UtiasDataset& data) {
     for (const auto& r : data.robots) row["robot" + std::to_string(r.robot)] = r4(utias::turnRateLagRms(r, ms / 1000.0));
     lag.push_back(row);
   }
+  utias::CommandCalibration pooled_calibration;
+  utias::ResidualCorrelation correlation;
+  json calibration = json::array();
+  const double window = 1.0;
+  for (const auto& r : data.robots) {
+    const auto cal = utias::commandCalibration(r, window, o.noise.command_delay_s);
+    pooled_calibration.add(cal);
+    correlation.add(data, r);
+    const Eigen::Vector2d w = cal.turn(window), d = cal.distance();
+    calibration.push_back({{"robot", r.robot}, {"omega_gain", r4(w[0])}, {"omega_bias_radps", r4(w[1])},
+                           {"v_gain", r4(d[0])}, {"v_turn_loss_m_per_rad", r4(d[1])}});
+  }
+  {
+    const Eigen::Vector2d w = pooled_calibration.turn(window), d = pooled_calibration.distance();
+    calibration.push_back({{"robot", "pooled"}, {"omega_gain", r4(w[0])}, {"omega_bias_radps", r4(w[1])},
+                           {"v_gain", r4(d[0])}, {"v_turn_loss_m_per_rad", r4(d[1])}});
+  }
+  json corr = json::array();
+  for (std::size_t b = 0; b < correlation.pairs.size(); ++b)
+    corr.push_back({{"lag_up_to_s", correlation.lag_edges_s[b]}, {"pairs", correlation.pairs[b]},
+                    {"range", r4(correlation.correlation(b, 0))}, {"bearing", r4(correlation.correlation(b, 1))}});
   json j{{"turn_rate_rms_by_command_lag_radps", lag},
+         {"command_calibration_1s_windows", calibration},
+         {"residual_correlation_same_landmark", corr},
          {"measurements", robots},
          {"measurements_pooled",
           {{"range_m", spreadJson(utias::spreadOf(pooled.range_m))},

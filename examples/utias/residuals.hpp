@@ -22,6 +22,8 @@
 #include <map>
 #include <vector>
 
+#include <Eigen/Cholesky>
+
 #include <sylva/core/angles.hpp>
 #include <sylva/datasets/utias_mrclam.hpp>
 #include <sylva/measurements/range_bearing.hpp>
@@ -152,5 +154,121 @@ inline double turnRateLagRms(const sylva::datasets::UtiasRobotData& robot, doubl
   }
   return n > 0 ? std::sqrt(sum / static_cast<double>(n)) : 0.0;
 }
+
+}  // namespace utias
+
+namespace utias {
+
+/// Least-squares calibration of the commands against the Vicon motion over consecutive
+/// windows of `window_s` (commands delayed by `delay_s`, piecewise constant):
+///   true turn      = omega_gain x commanded turn + omega_bias x window   (all windows)
+///   true distance  = v_gain x commanded distance - v_turn_loss x integral of |omega| while driving
+///                                                                      (windows with commanded distance > 0)
+/// The sums are returned so several robots can be pooled.
+struct CommandCalibration {
+  Eigen::Matrix2d turn_normal = Eigen::Matrix2d::Zero();
+  Eigen::Vector2d turn_rhs = Eigen::Vector2d::Zero();
+  Eigen::Matrix2d distance_normal = Eigen::Matrix2d::Zero();
+  Eigen::Vector2d distance_rhs = Eigen::Vector2d::Zero();
+  long windows = 0;
+
+  void add(const CommandCalibration& o) {
+    turn_normal += o.turn_normal;
+    turn_rhs += o.turn_rhs;
+    distance_normal += o.distance_normal;
+    distance_rhs += o.distance_rhs;
+    windows += o.windows;
+  }
+  /// [omega_gain, omega_bias (rad/s)]
+  Eigen::Vector2d turn(double window_s) const {
+    Eigen::Vector2d c = turn_normal.ldlt().solve(turn_rhs);
+    c[1] /= window_s;
+    return c;
+  }
+  /// [v_gain, v_turn_loss (m/rad)]
+  Eigen::Vector2d distance() const {
+    Eigen::Vector2d c = distance_normal.ldlt().solve(distance_rhs);
+    c[1] = -c[1];
+    return c;
+  }
+};
+
+inline CommandCalibration commandCalibration(const sylva::datasets::UtiasRobotData& robot, double window_s, double delay_s) {
+  const GroundTruth gt(robot.groundtruth);
+  const auto& cmds = robot.odometry;
+  CommandCalibration out;
+  std::size_t k = 0;
+  for (double t0 = cmds.front().time_s + delay_s; t0 + window_s < std::min(gt.end(), cmds.back().time_s + delay_s);
+       t0 += window_s) {
+    while (k + 1 < cmds.size() && cmds[k + 1].time_s + delay_s <= t0) ++k;
+    double turn = 0.0, dist = 0.0, turn_driving = 0.0, t = t0;
+    for (std::size_t j = k; t < t0 + window_s;) {
+      const double next = j + 1 < cmds.size() ? std::min(cmds[j + 1].time_s + delay_s, t0 + window_s) : t0 + window_s;
+      const Vec<2>& u = cmds[j].u;
+      turn += u[1] * (next - t);
+      dist += u[0] * (next - t);
+      turn_driving += (u[0] > 0.0 ? std::abs(u[1]) : 0.0) * (next - t);
+      t = next;
+      if (j + 1 < cmds.size() && cmds[j + 1].time_s + delay_s <= t) ++j;
+    }
+    const Vec<3> a = gt.at(t0), b = gt.at(t0 + window_s);
+    ++out.windows;
+    {
+      const Eigen::Vector2d x(turn, window_s);
+      out.turn_normal += x * x.transpose();
+      out.turn_rhs += x * sylva::wrapAngle(b[2] - a[2]);
+    }
+    if (dist > 0.0) {
+      const Eigen::Vector2d x(dist, turn_driving);
+      out.distance_normal += x * x.transpose();
+      out.distance_rhs += x * (b.head<2>() - a.head<2>()).norm();
+    }
+  }
+  return out;
+}
+
+/// Correlation of the measurement residuals of the same landmark at two times, by the time
+/// between them (pairs within `max_lag_s`, residuals beyond 1 m / 0.1 rad left out): how far
+/// apart two readings must be to count as independent. Accumulated over robots.
+struct ResidualCorrelation {
+  std::vector<double> lag_edges_s{0.5, 1.0, 2.0, 4.0, 8.0, 16.0, 32.0};
+  std::vector<Eigen::Matrix<double, 2, 3>> sums = std::vector<Eigen::Matrix<double, 2, 3>>(7, Eigen::Matrix<double, 2, 3>::Zero());
+  std::vector<long> pairs = std::vector<long>(7, 0);
+
+  void add(const sylva::datasets::UtiasDataset& data, const sylva::datasets::UtiasRobotData& robot) {
+    std::map<int, Vec<2>> truth;
+    for (const auto& l : data.landmarks) truth[l.subject] = l.position_m;
+    const GroundTruth gt(robot.groundtruth);
+    const sylva::RangeBearing model;
+    std::map<int, std::vector<std::pair<double, Vec<2>>>> by_subject;
+    for (const auto& o : robot.landmark_observations) {
+      const auto it = truth.find(o.subject);
+      if (it == truth.end() || !gt.covers(o.time_s)) continue;
+      const Vec<2> r = model.residual(o.z, model.predict<double>(gt.at(o.time_s), it->second));
+      if (std::abs(r[0]) > 1.0 || std::abs(r[1]) > 0.1) continue;
+      by_subject[o.subject].push_back({o.time_s, r});
+    }
+    for (const auto& entry : by_subject) {
+      const auto& v = entry.second;
+      for (std::size_t i = 0; i < v.size(); ++i)
+        for (std::size_t j = i + 1; j < v.size(); ++j) {
+          const double lag = v[j].first - v[i].first;
+          if (lag > lag_edges_s.back()) break;
+          std::size_t b = 0;
+          while (lag > lag_edges_s[b]) ++b;
+          for (int c = 0; c < 2; ++c) {
+            sums[b](c, 0) += v[i].second[c] * v[j].second[c];
+            sums[b](c, 1) += v[i].second[c] * v[i].second[c];
+            sums[b](c, 2) += v[j].second[c] * v[j].second[c];
+          }
+          ++pairs[b];
+        }
+    }
+  }
+  double correlation(std::size_t bin, int component) const {
+    const auto& s = sums[bin];
+    return s(component, 0) / std::sqrt(s(component, 1) * s(component, 2));
+  }
+};
 
 }  // namespace utias
