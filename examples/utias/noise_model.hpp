@@ -47,8 +47,8 @@
 //
 // --study: the known-correspondence run of all five robots for each of 36 settings of three
 // global scales (process x 0.5 / 1 / 2, range x 0.5 / 0.75 / 1 / 1.5, bearing 0.02 / 0.03 /
-// 0.05) around this configuration. The default is the centre setting; it and four of its
-// neighbours meet all six targets of issue 7.
+// 0.05) around this configuration. The default is the setting 1 / 1 / 0.03; it and four other
+// settings (all next to it in the grid) meet all six targets of issue 7.
 
 #include <algorithm>
 #include <cmath>
