@@ -23,6 +23,7 @@
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
+#include <map>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -94,6 +95,7 @@ json configJson(const utias::NoiseConfig& c) {
               {"initial_sigma", {c.initial_sigma[0], c.initial_sigma[1], c.initial_sigma[2]}},
               {"outlier_gate_probability", c.outlier_gate_probability},
               {"jcbb_gate_probability", c.jcbb_gate_probability},
+              {"jcbb_noise_scale", c.jcbb_noise_scale},
               {"new_landmark_probability", c.new_landmark_probability},
               {"candidate_range_m", c.candidate_range_m},
               {"candidate_half_fov_rad", c.candidate_half_fov_rad}};
@@ -123,6 +125,7 @@ json robotJson(const RobotReport& r) {
                 {"paired", a.paired},
                 {"correct", a.correct},
                 {"wrong", a.wrong},
+                {"wrong_same_cluster", a.wrong_same_cluster},
                 {"new", a.added},
                 {"duplicates", a.duplicates},
                 {"ambiguous", a.ambiguous}}},
@@ -308,6 +311,19 @@ int run(const Options& o) {
   if (o.noise_study) return noiseStudy(o, data);
   if (o.study) return configurationStudy(o, data);
 
+  // Clusters of landmarks for the association statistics only: true positions closer than
+  // 0.5 m, joined transitively (the data's landmarks stand in groups of two or three).
+  std::map<int, int> cluster_of;
+  for (const auto& l : data.landmarks) cluster_of[l.subject] = l.subject;
+  for (bool changed = true; changed;) {
+    changed = false;
+    for (const auto& a : data.landmarks)
+      for (const auto& b : data.landmarks)
+        if ((a.position_m - b.position_m).norm() < 0.5 && cluster_of[a.subject] > cluster_of[b.subject]) {
+          cluster_of[a.subject] = cluster_of[b.subject];
+          changed = true;
+        }
+  }
   std::vector<RobotReport> reports;
   for (const auto& robot : data.robots) {
     RobotReport r;
@@ -316,7 +332,7 @@ int run(const Options& o) {
     r.robot_observations = static_cast<long>(robot.robot_observations.size());
     const utias::GroundTruth gt(robot.groundtruth);
     r.known = utias::runSlam(robot, o.noise, utias::Association::kKnown, o.max_time_s);
-    r.jcbb = utias::runSlam(robot, o.noise, utias::Association::kJcbb, o.max_time_s);
+    r.jcbb = utias::runSlam(robot, o.noise, utias::Association::kJcbb, o.max_time_s, &cluster_of);
     r.known_scores = utias::score(r.known, gt, data.landmarks);
     r.jcbb_scores = utias::score(r.jcbb, gt, data.landmarks);
     r.duration_s = r.known.samples.empty() ? 0.0 : r.known.samples.back().time_s - robot.groundtruth.front().time_s;
@@ -355,7 +371,8 @@ int run(const Options& o) {
     std::cout << "robot " << r.robot << ": " << r.known.counts.observations << " landmark observations ("
               << r.known.counts.gated_out << " rejected by the outlier gate); skipped: " << r.unknown_barcodes
               << " unknown barcodes, " << r.robot_observations << " observations of robots\n"
-              << "  jcbb: " << a.paired << " paired (" << a.correct << " correct, " << a.wrong << " wrong), "
+              << "  jcbb: " << a.paired << " paired (" << a.correct << " correct, " << a.wrong << " wrong, " << a.wrong_same_cluster
+              << " of them in the same cluster), "
               << a.added << " new landmarks (" << a.duplicates << " duplicates), " << a.ambiguous
               << " ambiguous dropped; " << r.jcbb_scores.landmarks_mapped << " landmarks, landmark RMS "
               << fixed(r.jcbb_scores.landmark_aligned_rmse_m, 3) << " m aligned, NEES "
@@ -434,6 +451,10 @@ int main(int argc, char** argv) {
   app.add_option("--outlier-gate", c.outlier_gate_probability,
                  "known ids: chi-square probability above which an observation is rejected")
       ->check(CLI::Range(0.5, 0.99999999))
+      ->capture_default_str();
+  app.add_option("--jcbb-noise-scale", c.jcbb_noise_scale,
+                 "JCBB associates with this x the measurement sigmas (and fuses with the sigmas themselves)")
+      ->check(positive(false))
       ->capture_default_str();
   app.add_option("--jcbb-gate", c.jcbb_gate_probability, "chi-square gate probability of JCBB")
       ->check(CLI::Range(0.5, 0.999999))

@@ -77,6 +77,7 @@ struct NoiseConfig {
   double landmark_interval_s = 0.0;  ///< fuse a landmark at most once per this many seconds (0: every reading)
   Vec<3> initial_sigma = Vec<3>(0.01, 0.01, 0.01);  ///< P0 around the first Vicon pose (m, m, rad)
   double outlier_gate_probability = 0.999;  ///< known ids: an observation with NIS above this chi2(2) quantile is rejected
+  double jcbb_noise_scale = 0.3;            ///< JCBB associates with this x the measurement sigmas (fuses with 1 x)
   double jcbb_gate_probability = 0.99;      ///< individual and joint gates of JCBB
   double new_landmark_probability = 0.999999;  ///< JCBB: unpaired and NIS above this to every candidate -> new landmark
   double candidate_range_m = 10.0;       ///< JCBB candidates: predicted range below this ...

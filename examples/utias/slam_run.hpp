@@ -69,6 +69,7 @@ struct AssociationCounts {
   long paired = 0;        ///< fused into a mapped landmark
   long correct = 0;       ///< JCBB: paired with a landmark of the same subject
   long wrong = 0;         ///< JCBB: paired with a landmark of another subject
+  long wrong_same_cluster = 0;  ///< JCBB: of the wrong ones, with a landmark of the same cluster (given clusters)
   long added = 0;         ///< new landmarks
   long duplicates = 0;    ///< JCBB: new landmark of a subject already mapped
   long ambiguous = 0;     ///< JCBB: unpaired but too close to a candidate to add
@@ -102,10 +103,13 @@ inline std::vector<Id> candidates(const Filter& ekf, const NoiseConfig& c) {
 }  // namespace detail
 
 /// Runs the filter over `robot`'s data up to `max_time_s` (relative time; <= 0: all).
+/// `cluster_of` (subject -> cluster), when given, is used only to count JCBB's wrong pairings
+/// that stay inside a cluster of landmarks.
 inline RunResult runSlam(const sylva::datasets::UtiasRobotData& robot,
                          const NoiseConfig& config,
                          Association association,
-                         double max_time_s = 0.0) {
+                         double max_time_s = 0.0,
+                         const std::map<int, int>* cluster_of = nullptr) {
   using sylva::datasets::UtiasObservation;
   const auto start_clock = std::chrono::steady_clock::now();
   const sylva::RangeBearing model;
@@ -204,9 +208,12 @@ inline RunResult runSlam(const sylva::datasets::UtiasRobotData& robot,
         }
         // associateJcbb takes one noise for the image: that of its farthest reading.
         const sylva::Gaussian<2> R = config.measurementNoise(farthest);
+        // Association (JCBB's gates and the new-landmark rule) may use a smaller noise than
+        // the fusion: jcbb_noise_scale x the sigmas.
+        const sylva::Gaussian<2> R_assoc = sylva::Gaussian<2>::covariance(R.covariance() * (config.jcbb_noise_scale * config.jcbb_noise_scale));
         const std::vector<Id> cands = detail::candidates(ekf, config);
         const std::vector<std::optional<Id>> pairing =
-            sylva::associateJcbb(ekf, model, z, R, cands, config.jcbb_gate_probability);
+            sylva::associateJcbb(ekf, model, z, R_assoc, cands, config.jcbb_gate_probability);
         std::vector<std::size_t> to_add;
         for (std::size_t k = 0; k < group.size(); ++k) {
           if (pairing[k]) {
@@ -216,11 +223,15 @@ inline RunResult runSlam(const sylva::datasets::UtiasRobotData& robot,
             }
             paired.push_back({*pairing[k], z[k], R});
             ++out.counts.paired;
-            ++(subject_of.at(*pairing[k]) == group[k]->subject ? out.counts.correct : out.counts.wrong);
+            const int label = subject_of.at(*pairing[k]);
+            ++(label == group[k]->subject ? out.counts.correct : out.counts.wrong);
+            if (label != group[k]->subject && cluster_of != nullptr && cluster_of->count(label) != 0 &&
+                cluster_of->count(group[k]->subject) != 0 && cluster_of->at(label) == cluster_of->at(group[k]->subject))
+              ++out.counts.wrong_same_cluster;
             continue;
           }
           double closest = std::numeric_limits<double>::infinity();
-          for (const Id c : cands) closest = std::min(closest, ekf.innovation(model, c, z[k], R).nis());
+          for (const Id c : cands) closest = std::min(closest, ekf.innovation(model, c, z[k], R_assoc).nis());
           if (closest > new_gate)
             to_add.push_back(k);
           else
