@@ -14,11 +14,13 @@
 //
 // Known correspondences: the barcode names the landmark. An observation of a mapped landmark
 // whose NIS exceeds the chi-square gate (outlier_gate_probability, 2 dof) is rejected as an
-// outlier; the first observation of a landmark adds it.
+// outlier; the first observation of a landmark adds it (a second one in the same image is
+// not fused). With landmark_interval_s > 0 a landmark is fused at most once per interval.
 //
 // Unknown correspondences (JCBB): the barcodes are not used for pairing. Candidates are the
 // mapped landmarks whose predicted reading lies within candidate_range_m and
-// candidate_half_fov_rad; associateJcbb pairs the observations of one time with them. The
+// candidate_half_fov_rad; associateJcbb pairs the observations of one time with them, with
+// jcbb_noise_scale x the measurement sigmas (the update uses the full sigmas). The
 // declared rule for new landmarks: an unpaired observation becomes a new landmark when its
 // NIS to every candidate exceeds the chi-square quantile new_landmark_probability (2 dof);
 // otherwise it is ambiguous and dropped. The barcodes are kept only to score the pairings:
