@@ -22,7 +22,7 @@
 #include <sylva/motion/unicycle_2d.hpp>
 
 #include "ground_truth.hpp"
-#include "rigid_alignment.hpp"
+#include <sylva/eval/rigid_2d.hpp>
 #include "slam_run.hpp"
 
 namespace utias {
@@ -40,7 +40,7 @@ struct Scores {
   int landmarks_mapped = 0;
   int subjects_mapped = 0;  ///< distinct true landmarks among them
   long samples = 0;
-  Rigid2 alignment;
+  sylva::eval::Rigid2 alignment;
 };
 
 inline Scores score(const RunResult& run,
@@ -62,7 +62,7 @@ inline Scores score(const RunResult& run,
   }
   s.landmarks_mapped = static_cast<int>(run.landmarks.size());
   s.subjects_mapped = static_cast<int>(subjects.size());
-  if (est.size() >= 2) s.alignment = alignRigid2(est, tru);
+  if (est.size() >= 2) s.alignment = sylva::eval::alignRigid2(est, tru);
   s.alignment_angle_rad = s.alignment.angle();
   s.alignment_translation_m = s.alignment.translation;
   double lm = 0.0;

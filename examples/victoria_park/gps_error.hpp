@@ -22,10 +22,9 @@
 #include <cmath>
 #include <vector>
 
-#include <Eigen/Geometry>
-
 #include <sylva/core/types.hpp>
 #include <sylva/datasets/victoria_park.hpp>
+#include <sylva/eval/rigid_2d.hpp>
 
 namespace victoria_park {
 
@@ -87,7 +86,7 @@ struct GpsError {
   double max_valid_m = 0.0;
   int valid = 0;
   int total = 0;
-  Eigen::Matrix3d transform = Eigen::Matrix3d::Identity();  ///< map frame -> GPS frame
+  sylva::eval::Rigid2 transform;  ///< map frame -> GPS frame
   std::vector<double> fix_t_s, fix_error_m;                  ///< per fix inside the run
   std::vector<char> fix_valid;
 };
@@ -109,18 +108,17 @@ inline GpsError gpsError(const std::vector<TimedPoint>& laser_path,
   r.total = static_cast<int>(est_all.size());
   for (char f : flag) r.valid += f ? 1 : 0;
   if (r.valid < 3) return r;
-  Eigen::Matrix2Xd src(2, r.valid), dst(2, r.valid);
-  for (std::size_t i = 0, k = 0; i < est_all.size(); ++i)
+  std::vector<Vec<2>> src, dst;
+  for (std::size_t i = 0; i < est_all.size(); ++i)
     if (flag[i]) {
-      src.col(static_cast<Eigen::Index>(k)) = est_all[i];
-      dst.col(static_cast<Eigen::Index>(k)) = gps_all[i];
-      ++k;
+      src.push_back(est_all[i]);
+      dst.push_back(gps_all[i]);
     }
-  r.transform = Eigen::umeyama(src, dst, false);
+  r.transform = sylva::eval::alignRigid2(src, dst);
   std::vector<double> errors;
   double sum_valid = 0.0, sum_all = 0.0;
   for (std::size_t i = 0; i < est_all.size(); ++i) {
-    const Vec<2> p = r.transform.topLeftCorner<2, 2>() * est_all[i] + r.transform.topRightCorner<2, 1>();
+    const Vec<2> p = r.transform(est_all[i]);
     const double e2 = (p - gps_all[i]).squaredNorm();
     sum_all += e2;
     r.fix_error_m.push_back(std::sqrt(e2));

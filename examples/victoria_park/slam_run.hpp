@@ -321,8 +321,7 @@ RunResult runSlam(const ds::VictoriaParkData& data, const Config& cfg, const std
   out.landmarks = ekf.landmarkCount();
 
   out.gps = gpsError(path, data.gps, gps_valid);
-  const Eigen::Matrix3d& T = out.gps.transform;
-  const auto toGps = [&](const Vec<2>& p) { return Vec<2>(T.topLeftCorner<2, 2>() * p + T.topRightCorner<2, 1>()); };
+  const auto toGps = [&](const Vec<2>& p) { return out.gps.transform(p); };
   for (const TimedPoint& tp : path) out.laser_path.push_back(TimedPoint{tp.t_s, toGps(tp.p)});
   for (const sylva::LandmarkSlot& s : ekf.slots()) {
     const auto l = ekf.template landmarkMean<typename V::Landmark>(s.id);

@@ -86,3 +86,32 @@ TEST_CASE("alignment rejects bad input with a reason", "[eval][errors]") {
   CHECK(throwsCode([&] { eval::alignSimilarity(line, line); }, ErrorCode::kDegenerateGeometry));
   CHECK(throwsCode([&] { eval::meanSquaredError(eval::Similarity3{}, three, two); }, ErrorCode::kInvalidArgument));
 }
+
+TEST_CASE("alignRigid2 recovers a known rotation and translation, and keeps scale", "[eval]") {
+  sim::Rng rng(7);
+  const double angle = 2.5;  // beyond pi/2: the rotation must not flip
+  const Vec<2> t(-67.7, 41.7);
+  Mat<2, 2> R;
+  R << std::cos(angle), -std::sin(angle), std::sin(angle), std::cos(angle);
+  std::vector<Vec<2>> est, truth;
+  for (int i = 0; i < 20; ++i) {
+    est.emplace_back(rng.uniform(-30, 30), rng.uniform(-30, 30));
+    truth.push_back(R * est.back() + t);
+  }
+  const eval::Rigid2 T = eval::alignRigid2(est, truth);
+  CHECK(std::abs(T.angle() - angle) < 1e-12);
+  CHECK((T.translation - t).norm() < 1e-10);
+  CHECK((T(est[3]) - truth[3]).norm() < 1e-10);
+  CHECK(std::abs(T.rotation.determinant() - 1.0) < 1e-12);
+  const Vec<3> moved = T.pose(Vec<3>(1.0, 2.0, 1.0));
+  CHECK(std::abs(moved[2] - wrapAngle(1.0 + angle)) < 1e-12);
+  // A scaled copy is not matched by scaling: the rigid fit leaves a residual.
+  std::vector<Vec<2>> scaled;
+  for (const Vec<2>& p : truth) scaled.push_back(1.1 * p);
+  const eval::Rigid2 U = eval::alignRigid2(est, scaled);
+  CHECK(std::abs(U.rotation.determinant() - 1.0) < 1e-12);
+  CHECK((U(est[3]) - scaled[3]).norm() > 0.1);
+  CHECK(throwsCode([&] { eval::alignRigid2({Vec<2>(1, 2)}, {Vec<2>(1, 2)}); }, ErrorCode::kInvalidArgument));
+  est[0][1] = std::nan("");
+  CHECK(throwsCode([&] { eval::alignRigid2(est, truth); }, ErrorCode::kNonFinite));
+}
