@@ -83,7 +83,6 @@ struct RangeBearing {
   /// Predicted [range, bearing] (eq. 2.16-2.17), generic in the scalar for autodiff.
   template <typename T>
   Vec<2, T> predict(const Vec<3, T>& robot, const Vec<2, T>& landmark) const {
-    using std::atan2;
     using std::sqrt;
     const Vec<2, T> sensor = sensorPosition(robot);
     const T dx = landmark[0] - sensor[0];
@@ -99,7 +98,7 @@ struct RangeBearing {
     }
     Vec<2, T> z;
     z[0] = sqrt(d2);
-    z[1] = wrapAngle(T(atan2(dy, dx) - robot[2]));
+    z[1] = wrapAngle(T(atan2Generic(dy, dx) - robot[2]));
     return z;
   }
 
