@@ -48,6 +48,7 @@
 #include "sylva/core/scalar.hpp"
 #include "sylva/core/types.hpp"
 #include "sylva/motion/pose_2d.hpp"
+#include "sylva/motion/unicycle_2d.hpp"
 
 namespace sylva {
 
@@ -100,16 +101,10 @@ struct Ackermann2D : Pose2D {
     double v_c = 0.0;
     double omega = 0.0;
     axleMotion(u[0], u[1], v_c, omega);
-    const double heading = x[2] + 0.5 * dt * omega;
-    const double c = std::cos(heading);
-    const double s = std::sin(heading);
-    State next;
-    next << x[0] + dt * v_c * c, x[1] + dt * v_c * s, wrapAngle(x[2] + dt * omega);
-    if (J_x) {
-      *J_x << 1.0, 0.0, -dt * v_c * s,  //
-          0.0, 1.0, dt * v_c * c,       //
-          0.0, 0.0, 1.0;
-    }
+    // The unicycle step at the axle centre's (v_c, omega); its control Jacobian chained with
+    // d(v_c, omega) / d(v_e, alpha).
+    Mat<3, 2> J_unicycle;
+    const State next = Unicycle2D{}(x, Vec<2>(v_c, omega), dt, J_x, J_unicycle);
     if (J_n) {
       const double t = std::tan(u[1]);
       const double sec2 = 1.0 + t * t;
@@ -120,10 +115,6 @@ struct Ackermann2D : Pose2D {
       J_axle(0, 1) = u[0] * k * sec2 / (D * D);
       J_axle(1, 0) = t * J_axle(0, 0) / wheelbase_;
       J_axle(1, 1) = (t * J_axle(0, 1) + v_c * sec2) / wheelbase_;
-      Mat<3, 2> J_unicycle;  // d(next) / d(v_c, omega)
-      J_unicycle << dt * c, -0.5 * dt * dt * v_c * s,  //
-          dt * s, 0.5 * dt * dt * v_c * c,             //
-          0.0, dt;
       *J_n = J_unicycle * J_axle;
     }
     return next;
@@ -133,16 +124,10 @@ struct Ackermann2D : Pose2D {
   /// derivative of).
   template <typename T>
   Vec<3, T> propagate(const Vec<3, T>& x, const Vec<2, T>& u, const Vec<2, T>& n, double dt) const {
-    using std::cos;
-    using std::sin;
     T v_c;
     T omega;
     axleMotion(T(u[0] + n[0]), T(u[1] + n[1]), v_c, omega);
-    const T heading = x[2] + T(0.5 * dt) * omega;
-    Vec<3, T> next;
-    next << x[0] + T(dt) * v_c * cos(heading), x[1] + T(dt) * v_c * sin(heading),
-        wrapAngle(T(x[2] + T(dt) * omega));
-    return next;
+    return Unicycle2D{}.propagate<T>(x, Vec<2, T>(v_c, omega), Vec<2, T>::Zero(), dt);
   }
 
  private:
