@@ -1,9 +1,13 @@
 #pragma once
 // Test helper: a fresh folder under the system's temporary directory for the files a test case
 // writes (loader tests write their own small inputs), removed again at the end of the case.
+// Its name carries the process id: ctest runs test cases as parallel processes, and two
+// cases must never share (and delete) each other's folder.
 #include <filesystem>
 #include <fstream>
 #include <string>
+
+#include <unistd.h>
 
 namespace sylva_test {
 
@@ -11,7 +15,8 @@ struct TempFolder {
   std::filesystem::path path;
 
   explicit TempFolder(const std::string& name)
-      : path(std::filesystem::temp_directory_path() / ("sylva_test_" + name)) {
+      : path(std::filesystem::temp_directory_path() /
+             ("sylva_test_" + name + "_" + std::to_string(static_cast<long>(::getpid())))) {
     std::filesystem::remove_all(path);
     std::filesystem::create_directories(path);
   }

@@ -9,6 +9,7 @@
 
 #include <sylva/core/angles.hpp>
 #include <sylva/core/jacobian_ref.hpp>
+#include <sylva/core/scalar.hpp>
 #include <sylva/core/types.hpp>
 #include <sylva/landmarks/point2.hpp>
 #include <sylva/motion/unicycle_2d.hpp>
@@ -35,7 +36,6 @@ struct RangeBearingToInverseDistance {
 
   template <typename T>
   Vec<2, T> predict(const Vec<3, T>& x, const Vec<4, T>& l) const {
-    using std::atan2;
     using std::cos;
     using std::sin;
     using std::sqrt;
@@ -45,7 +45,7 @@ struct RangeBearingToInverseDistance {
     const T dy = py - x[1];
     Vec<2, T> z;
     z[0] = sqrt(dx * dx + dy * dy);
-    z[1] = sylva::wrapAngle(T(atan2(dy, dx) - x[2]));
+    z[1] = sylva::wrapAngle(T(sylva::atan2Generic(dy, dx) - x[2]));
     return z;
   }
 
