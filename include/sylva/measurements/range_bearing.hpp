@@ -65,14 +65,22 @@ struct RangeBearing {
   /// robot's. Throws kNonFinite for a non-finite mount.
   explicit RangeBearing(const Vec<2>& sensor_in_robot) : mount_(sensor_in_robot) {
     if (!mount_.allFinite()) fail(ErrorCode::kNonFinite, "RangeBearing: the sensor mount is not finite");
-    mounted_ = !mount_.isZero(0.0);
   }
   const Vec<2>& mount() const { return mount_; }
+  /// False for the default sensor at the robot's origin (the code then skips the mount).
+  bool mounted() const { return mount_[0] != 0.0 || mount_[1] != 0.0; }
+
+  /// ds/dtheta = R'(theta) m: how the sensor position moves with the robot heading.
+  Vec<2> mountRate(double theta) const {
+    const double c = std::cos(theta);
+    const double s = std::sin(theta);
+    return Vec<2>(-s * mount_[0] - c * mount_[1], c * mount_[0] - s * mount_[1]);
+  }
 
   /// The sensor position in the world frame, generic in the scalar.
   template <typename T>
   Vec<2, T> sensorPosition(const Vec<3, T>& robot) const {
-    if (!mounted_) return robot.template head<2>();
+    if (!mounted()) return robot.template head<2>();
     using std::cos;
     using std::sin;
     const T c = cos(robot[2]);
@@ -91,7 +99,7 @@ struct RangeBearing {
     if (!(scalarValue(d2) >= kMinRange * kMinRange)) {
       std::ostringstream os;
       os << "RangeBearing: landmark (" << scalarValue(landmark[0]) << ", "
-         << scalarValue(landmark[1]) << ") coincides with the " << (mounted_ ? "sensor" : "robot")
+         << scalarValue(landmark[1]) << ") coincides with the " << (mounted() ? "sensor" : "robot")
          << " position; bearing undefined";
       fail(std::isfinite(scalarValue(d2)) ? ErrorCode::kDegenerateGeometry : ErrorCode::kNonFinite,
            os.str());
@@ -116,12 +124,8 @@ struct RangeBearing {
     if (J_z_x) {
       *J_z_x << -dx / d, -dy / d, 0.0,  //
           dy / d2, -dx / d2, -1.0;
-      if (mounted_) {  // the sensor moves with theta: ds/dtheta = R'(theta) m
-        const double c = std::cos(robot[2]);
-        const double s = std::sin(robot[2]);
-        const Vec<2> ds(-s * mount_[0] - c * mount_[1], c * mount_[0] - s * mount_[1]);
-        (*J_z_x).col(2) += (*J_z_x).template leftCols<2>() * ds;
-      }
+      if (mounted())  // the sensor moves with theta
+        (*J_z_x).col(2) += (*J_z_x).template leftCols<2>() * mountRate(robot[2]);
     }
     if (J_z_l) {
       *J_z_l << dx / d, dy / d,  //
@@ -137,7 +141,6 @@ struct RangeBearing {
 
  private:
   Vec<2> mount_ = Vec<2>::Zero();
-  bool mounted_ = false;
 };
 
 /// Landmark initialization from one range-bearing measurement (eq. 2.33):
@@ -173,13 +176,7 @@ struct InverseRangeBearing {
     if (J_l_x) {
       *J_l_x << 1.0, 0.0, -r * s,  //
           0.0, 1.0, r * c;
-      if (!forward_.mount().isZero(0.0)) {
-        const double ct = std::cos(robot[2]);
-        const double st = std::sin(robot[2]);
-        const Vec<2>& m = forward_.mount();
-        (*J_l_x)(0, 2) += -st * m[0] - ct * m[1];
-        (*J_l_x)(1, 2) += ct * m[0] - st * m[1];
-      }
+      if (forward_.mounted()) (*J_l_x).col(2) += forward_.mountRate(robot[2]);
     }
     if (J_l_z) {
       *J_l_z << c, -r * s,  //
