@@ -68,6 +68,15 @@ struct HasNormalizationJacobian<
     std::void_t<decltype(Robot::normalizationJacobian(std::declval<const Vec<Robot::kDim>&>()))>>
     : std::true_type {};
 
+template <typename Robot, typename = void>
+struct HasFirstEstimatesJacobian : std::false_type {};
+template <typename Robot>
+struct HasFirstEstimatesJacobian<
+    Robot,
+    std::void_t<decltype(Robot::firstEstimatesJacobian(std::declval<const Vec<Robot::kDim>&>(),
+                                                       std::declval<const Vec<Robot::kDim>&>()))>>
+    : std::true_type {};
+
 /// z_hat = h(robot, landmark) and, when requested, its two Jacobians.
 template <typename Model>
 Vec<Model::kDim> evaluate(const Model& model,

@@ -53,6 +53,21 @@ struct Observation {
   Gaussian<Model::kDim> noise;
 };
 
+/// Where the filter evaluates the Jacobians of its motion and measurement models.
+/// Predictions h(x) are always taken at the current estimate; only the Jacobians move.
+/// See docs/filter.md ("First-estimates Jacobians").
+enum class LinearizationPoint {
+  /// The textbook EKF: every Jacobian at the latest estimate.
+  kCurrentEstimate,
+  /// First-estimates Jacobians (FEJ; Huang, Mourikis and Roumeliotis 2010): measurement
+  /// Jacobians at each landmark's first estimate and the robot's latest prediction, the
+  /// transition Jacobian at the latest two predictions. The linearized system then keeps the
+  /// unobservable global pose unobservable, so heading confidence cannot come from
+  /// linearization alone (the textbook EKF's known overconfidence). Needs a robot with
+  /// `firstEstimatesJacobian(from, to)` (every `Pose2D` robot has it).
+  kFirstEstimates,
+};
+
 /// How `update(model, observations, fusion)` fuses a range of observations.
 enum class Fusion {
   kBatched,     ///< one stacked update: one linearization point, one pass over P
@@ -163,6 +178,7 @@ class BasicEkf {
     checkCovariance(P0, "Ekf: initial robot covariance");
     reserve(0);
     mean_.template head<kRobotDim>() = x0;
+    first_.template head<kRobotDim>() = x0;
     cov_.template topLeftCorner<kRobotDim, kRobotDim>() = 0.5 * (P0 + P0.transpose());
     n_ = kRobotDim;
   }
@@ -170,6 +186,21 @@ class BasicEkf {
   /// Pre-allocates storage for landmarks totalling `landmark_dims` state entries so that
   /// later `add` calls do not reallocate.
   void reserve(int landmark_dims) { ensureCapacity(kRobotDim + std::max(0, landmark_dims)); }
+
+  /// Chooses where Jacobians are evaluated (default: the current estimate). The filter
+  /// always records each landmark's first estimate and the robot's latest prediction, so the
+  /// choice can be made at any time. kFirstEstimates needs a robot with
+  /// `firstEstimatesJacobian` (else kInvalidArgument, and the filter is unchanged).
+  void setLinearizationPoint(LinearizationPoint point) {
+    if constexpr (!detail::HasFirstEstimatesJacobian<Robot>::value) {
+      if (point == LinearizationPoint::kFirstEstimates)
+        fail(ErrorCode::kInvalidArgument,
+             "Ekf::setLinearizationPoint: first-estimates Jacobians need a robot with a static "
+             "firstEstimatesJacobian(from, to), and the filter's robot type has none");
+    }
+    linearization_ = point;
+  }
+  LinearizationPoint linearizationPoint() const { return linearization_; }
 
   // ---------------------------------------------------------------- access
 
@@ -249,8 +280,14 @@ class BasicEkf {
       fail(ErrorCode::kNonFinite, "Ekf::predict: motion model produced a non-finite state or Jacobian");
 
     const RobotCovariance GQGt = G * noise.covariance() * G.transpose();
+    if constexpr (detail::HasFirstEstimatesJacobian<Robot>::value) {
+      // FEJ: the transition Jacobian between the previous prediction and this one.
+      if (linearization_ == LinearizationPoint::kFirstEstimates)
+        F = Robot::firstEstimatesJacobian(RobotState(first_.template head<kRobotDim>()), next);
+    }
     // From here on nothing can fail.
     mean_.template head<kRobotDim>() = next;
+    first_.template head<kRobotDim>() = next;
     transformRobotBlock(F, GQGt);  // eq. 2.27
   }
 
@@ -377,17 +414,23 @@ class BasicEkf {
 
   // ---------------------------------------------------------------- gating helpers
 
-  /// h(x) and the two non-zero blocks of H for landmark `id` at the current estimate.
+  /// h(x) at the current estimate and the two non-zero blocks of H for landmark `id`, at
+  /// the filter's linearization point (`setLinearizationPoint`).
   template <typename Model>
   Linearization<Model> linearize(const Model& model, Id id) const {
     checkModel<Model>();
+    constexpr int L = Model::Landmark::kDim;
     const LandmarkSlot& s = typedSlot<typename Model::Landmark>(id, Model::kName);
     Linearization<Model> lin;
     lin.landmark_offset = s.offset;
-    lin.z_hat = detail::evaluate(model, robotMean(),
-                                 Vec<Model::Landmark::kDim>(
-                                     mean_.template segment<Model::Landmark::kDim>(s.offset)),
-                                 lin.J_z_x, lin.J_z_l);
+    const Vec<L> landmark = mean_.template segment<L>(s.offset);
+    if (linearization_ == LinearizationPoint::kFirstEstimates) {
+      lin.z_hat = detail::evaluate(model, robotMean(), landmark, {}, {});
+      detail::evaluate(model, RobotState(first_.template head<kRobotDim>()),
+                       Vec<L>(first_.template segment<L>(s.offset)), lin.J_z_x, lin.J_z_l);
+    } else {
+      lin.z_hat = detail::evaluate(model, robotMean(), landmark, lin.J_z_x, lin.J_z_l);
+    }
     if (!lin.z_hat.allFinite() || !lin.J_z_x.allFinite() || !lin.J_z_l.allFinite())
       fail(ErrorCode::kNonFinite, nameOf<Model>() + ": prediction or Jacobian is not finite for landmark " +
                                       std::to_string(id));
@@ -463,6 +506,7 @@ class BasicEkf {
     const int off = n_;
     mean_.template segment<L>(off) = l;
     detail::normalize<Landmark>(mean_.template segment<L>(off));
+    first_.template segment<L>(off) = mean_.template segment<L>(off);
     // New rows (lower storage): [J_l_x P_rr, J_l_x P_rm]    (eq. 2.39, bottom row)
     cov_.template block<L, kRobotDim>(off, 0).noalias() = J_l_x * P_rr;
     const int m = n_ - kRobotDim;
@@ -655,6 +699,7 @@ class BasicEkf {
     const int off = n_;
     mean_.template segment<Lt>(off) = new_mean;
     detail::normalize<To>(mean_.template segment<Lt>(off));
+    first_.template segment<Lt>(off) = mean_.template segment<Lt>(off);  // a new first estimate
     cov_.block(off, 0, Lt, rest) = cross;
     cov_.template block<Lt, Lt>(off, off) = P_new;
     n_ += Lt;
@@ -685,11 +730,14 @@ class BasicEkf {
     if (needed <= capacity_) return;
     const int capacity = std::max(needed, 2 * capacity_);
     Eigen::VectorXd mean = Eigen::VectorXd::Zero(capacity);
+    Eigen::VectorXd first = Eigen::VectorXd::Zero(capacity);
     Eigen::MatrixXd cov = Eigen::MatrixXd::Zero(capacity, capacity);
     mean.head(n_) = mean_.head(n_);
+    first.head(n_) = first_.head(n_);
     cov.topLeftCorner(n_, n_).template triangularView<Eigen::Lower>() =
         cov_.topLeftCorner(n_, n_);
     mean_.swap(mean);
+    first_.swap(first);
     cov_.swap(cov);
     capacity_ = capacity;
   }
@@ -699,6 +747,7 @@ class BasicEkf {
     const int tail = n_ - off - d;
     if (tail > 0) {
       mean_.segment(off, tail) = mean_.segment(off + d, tail).eval();
+      first_.segment(off, tail) = first_.segment(off + d, tail).eval();
       // Columns left of the block: move their lower rows up by d.
       for (int j = 0; j < off; ++j) {
         double* col = cov_.col(j).data();
@@ -902,6 +951,10 @@ class BasicEkf {
   int n_ = 0;
   int capacity_ = 0;
   Eigen::VectorXd mean_;
+  /// Linearization points for kFirstEstimates, laid out as mean_: the robot's latest
+  /// prediction, then each landmark's estimate when it entered the state.
+  Eigen::VectorXd first_;
+  LinearizationPoint linearization_ = LinearizationPoint::kCurrentEstimate;
   Eigen::MatrixXd cov_;  // lower triangle of the top-left n_ x n_ corner is authoritative
   std::vector<LandmarkSlot> slots_;
   std::unordered_map<Id, std::size_t> index_;

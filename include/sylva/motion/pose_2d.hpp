@@ -20,6 +20,20 @@ struct Pose2D {
   /// Brings a state back to its canonical range (theta in (-pi, pi]).
   static void normalize(Eigen::Ref<State> x) { x[2] = wrapAngle(x[2]); }
 
+  /// The state-transition Jacobian of first-estimates linearization (Huang, Mourikis and
+  /// Roumeliotis 2010, "Observability-based rules for designing consistent EKF SLAM
+  /// estimators", IJRR 29(5), eq. 34): for a motion x' = x (+) delta(u), a rigid increment in
+  /// the robot frame, J_x = [ 1 0 -(y' - y) ; 0 1 (x' - x) ; 0 0 1 ]. First-estimates
+  /// linearization evaluates it with `from` the prior of the previous step x_{k|k-1} and `to`
+  /// the new prediction x_{k+1|k}, instead of the posterior x_{k|k}. Every planar robot of
+  /// sylva moves that way; one that does not (a world-frame drift, say) must hide this.
+  static Eigen::Matrix3d firstEstimatesJacobian(const State& from, const State& to) {
+    Eigen::Matrix3d J = Eigen::Matrix3d::Identity();
+    J(0, 2) = -(to[1] - from[1]);
+    J(1, 2) = to[0] - from[0];
+    return J;
+  }
+
   /// Difference of two states with the angle wrapped, for errors and NEES.
   static State difference(const State& a, const State& b) {
     State d = a - b;
