@@ -12,7 +12,7 @@ namespace victoria_park {
 /// The four noise values of the robustness study (each x1.5, x1, /1.5: 81 settings).
 struct Noise {
   double speed_mps = 0.5;      ///< encoder speed, per 40 Hz odometry sample
-  double steering_rad = 0.015; ///< steering angle, per 40 Hz odometry sample
+  double steering_rad = 0.019; ///< steering angle, per 40 Hz odometry sample
   double range_m = 0.25;       ///< laser range to the trunk centre
   double bearing_rad = 0.04;   ///< laser bearing (2.3 deg)
 };
@@ -29,6 +29,8 @@ struct Config {
   double odometry_period_s = 0.025;  ///< 40 Hz
   std::string predict = "scan";      ///< "scan": one prediction per scan, "odometry": per sample
   std::string association = "jcbb";  ///< "jcbb" or "nn"
+  /// "first-estimates" (FEJ, sylva::LinearizationPoint::kFirstEstimates) or "current"
+  std::string linearization = "first-estimates";
   double max_range_m = 40.0;         ///< detections farther away are not used
   double gate_probability = 0.99;    ///< individual and joint chi-square gates
   /// A reading that pairs with nothing starts or feeds a tentative track only if its NIS
@@ -53,6 +55,7 @@ inline nlohmann::json toJson(const Config& c) {
           {"laser_left_m", c.laser_left_m},
           {"predict", c.predict},
           {"association", c.association},
+          {"linearization", c.linearization},
           {"max_range_m", c.max_range_m},
           {"gate_probability", c.gate_probability},
           {"new_landmark_probability", c.new_landmark_probability},

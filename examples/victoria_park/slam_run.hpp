@@ -186,6 +186,7 @@ RunResult runSlam(const ds::VictoriaParkData& data, const Config& cfg, const std
   const double new_gate = sylva::chiSquareGate(M, cfg.new_landmark_probability);
 
   Filter ekf(Vec<3>::Zero(), Mat<3, 3>::Zero(), car);
+  if (cfg.linearization == "first-estimates") ekf.setLinearizationPoint(sylva::LinearizationPoint::kFirstEstimates);
   ekf.reserve(V::Landmark::kDim * 512);
   detail::OdometryIntegrator<Filter> odometry(data.odometry, cfg, car);
 
