@@ -8,7 +8,6 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
-#include <limits>
 #include <optional>
 #include <unordered_map>
 #include <vector>
@@ -142,12 +141,7 @@ inline Simulation simulate(const Options& o) {
   sim.dt_s = trajectory.dt();
   sim.world = makeIndoorWorld(trajectory.path());
   const LaserScanner2D scanner;  // SICK class: 180 deg at 0.5 deg, 8 m, 1 cm
-  sylva::LaserScanGeometry geometry;
-  geometry.angle_min_rad = scanner.angleMin();
-  geometry.angle_increment_rad = scanner.angleIncrement();
-  geometry.beams = scanner.beamCount();
-  geometry.min_range_m = scanner.options().min_range_m;
-  geometry.max_range_m = scanner.options().max_range_m;
+  const sylva::LaserScanGeometry geometry = scanner.geometry();
   const VerticalEdgeCamera camera(cameraOptions(o));
 
   Rng calibration_rng(deriveSeed(o.seed, 1));
@@ -288,9 +282,7 @@ inline VariantResult runVariant(const Simulation& sim, const Options& o, Variant
         paired.push_back({*pairing[i], features[i].z, R});
         continue;
       }
-      double closest = std::numeric_limits<double>::infinity();
-      for (const Id c : candidates) closest = std::min(closest, ekf.innovation(model, c, z[i], R_gate).nis());
-      if (closest > new_gate)
+      if (sylva::smallestNis(ekf, model, z[i], R_gate, candidates) > new_gate)
         fresh.push_back(i);
       else
         ++result.ambiguous;

@@ -35,6 +35,7 @@
 #include <vector>
 
 #include <sylva/association/nearest_neighbor.hpp>
+#include <sylva/association/smallest_nis.hpp>
 #include <sylva/consistency/chi_square.hpp>
 #include <sylva/consistency/monte_carlo.hpp>
 #include <sylva/consistency/nees.hpp>
@@ -272,9 +273,7 @@ inline SlamResult runSlam(const SlamData& data, const SlamRunOptions& o, bool re
         }
         continue;
       }
-      double closest = std::numeric_limits<double>::infinity();
-      for (const Id c : candidates) closest = std::min(closest, ekf.innovation(model, c, z[i], R).nis());
-      if (closest > new_gate) to_add.push_back(i);
+      if (sylva::smallestNis(ekf, model, z[i], R, candidates) > new_gate) to_add.push_back(i);
     }
     if (!paired.empty()) ekf.update(model, paired);
     for (const std::size_t i : to_add) {

@@ -315,9 +315,7 @@ void associateAndFuse(Filter& ekf,
       paired.push_back({*pairing[i], readings[i].z, R});
       continue;
     }
-    double closest = std::numeric_limits<double>::infinity();
-    for (const Id c : cands) closest = std::min(closest, ekf.innovation(model, c, z[i], R).nis());
-    if (closest > new_gate) {
+    if (sylva::smallestNis(ekf, model, z[i], R, cands) > new_gate) {
       to_add.push_back(i);
     } else {
       ++stats.ambiguous;

@@ -34,6 +34,7 @@
 #include <vector>
 
 #include <sylva/association/jcbb.hpp>
+#include <sylva/association/smallest_nis.hpp>
 #include <sylva/consistency/chi_square.hpp>
 #include <sylva/datasets/utias_mrclam.hpp>
 #include <sylva/filter/ekf.hpp>
@@ -232,9 +233,7 @@ inline RunResult runSlam(const sylva::datasets::UtiasRobotData& robot,
               ++out.counts.wrong_same_cluster;
             continue;
           }
-          double closest = std::numeric_limits<double>::infinity();
-          for (const Id c : cands) closest = std::min(closest, ekf.innovation(model, c, z[k], R_assoc).nis());
-          if (closest > new_gate)
+          if (sylva::smallestNis(ekf, model, z[k], R_assoc, cands) > new_gate)
             to_add.push_back(k);
           else
             ++out.counts.ambiguous;

@@ -236,14 +236,7 @@ RunResult runSlam(const ds::VictoriaParkData& data, const Config& cfg, const std
     std::vector<char> is_new(z.size(), 0);
     for (std::size_t i = 0; i < z.size(); ++i) {
       if (pairing[i]) continue;
-      bool clear = true;
-      for (const Id id : candidates) {
-        const auto inn = ekf.innovation(model, id, z[i], R);
-        if (inn.nu.dot(inn.S.ldlt().solve(inn.nu)) < new_gate) {
-          clear = false;
-          break;
-        }
-      }
+      const bool clear = sylva::smallestNis(ekf, model, z[i], R, candidates) >= new_gate;
       is_new[i] = clear ? 1 : 0;
       if (!clear) ++out.ambiguous;
     }
@@ -301,13 +294,11 @@ RunResult runSlam(const ds::VictoriaParkData& data, const Config& cfg, const std
         best->count = -1;  // consumed
       }
     }
-    const std::size_t before = tentatives.size();
     tentatives.erase(std::remove_if(tentatives.begin(), tentatives.end(),
                                     [&](const detail::Tentative& t) {
                                       return t.count < 0 || scan.t_s - t.last_t > cfg.tentative_timeout_s;
                                     }),
                      tentatives.end());
-    (void)before;
 
     const Vec<3> xr = ekf.robotMean();
     path.push_back(TimedPoint{scan.t_s, sylva::RangeBearing(mount).sensorPosition<double>(xr)});

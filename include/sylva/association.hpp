@@ -8,4 +8,5 @@
 #include "sylva/association/joint_compatibility.hpp"
 #include "sylva/association/known_ids.hpp"
 #include "sylva/association/nearest_neighbor.hpp"
+#include "sylva/association/smallest_nis.hpp"
 // IWYU pragma: end_exports

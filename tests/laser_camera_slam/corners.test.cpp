@@ -15,21 +15,11 @@ namespace unity_laser_camera_slam_corners {
 using namespace laser_camera_slam;
 using sylva::Vec;
 
-sylva::LaserScanGeometry geometryOf(const sylva::sim::LaserScanner2D& s) {
-  sylva::LaserScanGeometry g;
-  g.angle_min_rad = s.angleMin();
-  g.angle_increment_rad = s.angleIncrement();
-  g.beams = s.beamCount();
-  g.min_range_m = s.options().min_range_m;
-  g.max_range_m = s.options().max_range_m;
-  return g;
-}
-
 TEST_CASE("extractCorners finds the corner of two walls and nothing on a flat wall", "[laser_camera_slam]") {
   sylva::sim::LaserScanner2DOptions o;
   o.sigma_range_m = 0.0;
   const sylva::sim::LaserScanner2D scanner(o);
-  const auto g = geometryOf(scanner);
+  const auto g = scanner.geometry();
   sylva::sim::Rng rng(1);
   {
     sylva::sim::LaserScene2D scene;
@@ -58,7 +48,7 @@ TEST_CASE("extractCorners finds the corner of two walls and nothing on a flat wa
 
 TEST_CASE("extractCorners is accurate to about a centimetre with 1 cm range noise", "[laser_camera_slam]") {
   const sylva::sim::LaserScanner2D scanner;  // 1 cm
-  const auto g = geometryOf(scanner);
+  const auto g = scanner.geometry();
   sylva::sim::LaserScene2D scene;
   scene.addPolyline({Vec<2>(4.0, -4.0), Vec<2>(4.0, 1.5), Vec<2>(-2.0, 1.5)}, false, 1);
   sylva::sim::Rng rng(3);
@@ -77,7 +67,7 @@ TEST_CASE("extractCorners is accurate to about a centimetre with 1 cm range nois
 
 TEST_CASE("extractCorners skips invalid readings", "[laser_camera_slam]") {
   const sylva::sim::LaserScanner2D scanner;
-  const auto g = geometryOf(scanner);
+  const auto g = scanner.geometry();
   std::vector<double> ranges(static_cast<std::size_t>(g.beams), std::numeric_limits<double>::quiet_NaN());
   CHECK(extractCorners(ranges, g).empty());
   ranges.assign(ranges.size(), std::numeric_limits<double>::infinity());

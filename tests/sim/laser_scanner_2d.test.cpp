@@ -78,6 +78,12 @@ TEST_CASE("LaserScanner2D: 361 beams over 180 deg and exact ranges to a wall", "
   CHECK(scanner.beamAngle(0) == Approx(-90.0 * kDeg));
   CHECK(scanner.beamAngle(180) == Approx(0.0).margin(1e-12));
   CHECK(scanner.beamAngle(360) == Approx(90.0 * kDeg));
+  // The geometry handed to scan readers names the same beams and range interval.
+  const sylva::LaserScanGeometry g = scanner.geometry();
+  REQUIRE(g.beams == 361);
+  for (int k : {0, 1, 180, 360}) CHECK(g.beamAngle(k) == Approx(scanner.beamAngle(k)).margin(1e-12));
+  CHECK(g.min_range_m == scanner.options().min_range_m);
+  CHECK(g.max_range_m == 20.0);
   LaserScene2D scene;
   scene.addSegment(Vec<2>(6.0, -50.0), Vec<2>(6.0, 50.0), 7);  // a wall 5 m ahead of the sensor
   Rng rng(3);

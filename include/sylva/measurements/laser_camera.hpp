@@ -76,20 +76,9 @@
 #include "sylva/core/types.hpp"
 #include "sylva/measurements/laser_camera_calibration.hpp"
 #include "sylva/measurements/laser_range_interpolation.hpp"
+#include "sylva/measurements/laser_scan_geometry.hpp"
 
 namespace sylva {
-
-/// The beams of a planar scan: a_k = angle_min + k * increment, k = 0 .. beams - 1.
-struct LaserScanGeometry {
-  double angle_min_rad = -0.5 * kPi;
-  double angle_increment_rad = 0.5 * kPi / 180.0;
-  int beams = 361;
-  double min_range_m = 0.05;  ///< readings below are invalid
-  double max_range_m = 8.0;   ///< readings above are "no return"
-
-  double beamAngle(int k) const { return angle_min_rad + k * angle_increment_rad; }
-  double angleMax() const { return beamAngle(beams - 1); }
-};
 
 struct LaserCameraOptions {
   double camera_above_laser_m = 0.19;          ///< b of Fig. 3.5 (thesis: 19 cm), >= 0

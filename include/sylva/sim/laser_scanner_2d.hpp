@@ -45,6 +45,7 @@
 #include "sylva/core/angles.hpp"
 #include "sylva/core/error.hpp"
 #include "sylva/core/types.hpp"
+#include "sylva/measurements/laser_scan_geometry.hpp"
 #include "sylva/sim/laser_scene_2d.hpp"
 #include "sylva/sim/random.hpp"
 
@@ -78,6 +79,16 @@ class LaserScanner2D {
   double beamAngle(int i) const { return -0.5 * options_.fov_rad + i * options_.resolution_rad; }
   double angleMin() const { return -0.5 * options_.fov_rad; }
   double angleIncrement() const { return options_.resolution_rad; }
+  /// The beams and valid ranges of this scanner's scans, as the scan readers take them.
+  LaserScanGeometry geometry() const {
+    LaserScanGeometry g;
+    g.angle_min_rad = angleMin();
+    g.angle_increment_rad = angleIncrement();
+    g.beams = beamCount();
+    g.min_range_m = options_.min_range_m;
+    g.max_range_m = options_.max_range_m;
+    return g;
+  }
 
   /// Scans `scene` from `sensor_pose` = [x, y, theta] into `out` (storage reused).
   void scan(const Vec<3>& sensor_pose, const LaserScene2D& scene, Rng& rng, LaserScan2D& out) const {
