@@ -12,16 +12,17 @@
 #
 # Missing Debian packages are installed with apt-get (as root, or through sudo).
 # Environment: SYLVA_BUILD_ROOT (default <repo>/build) holds the build directories,
-# SYLVA_JOBS (default: number of cores) is the parallelism of builds and ctest.
-# The Release phase uses the default C++ compiler (g++ on Debian) so that the compiler most
-# users have builds everything; the sanitizer phase adds a second compiler.
+# SYLVA_JOBS (default: number of cores) is the parallelism of builds and ctest,
+# SYLVA_CXX (default: the system's c++, g++ on Debian) compiles the Release phase and
+# SYLVA_SANITIZE_CXX (default clang++) the sanitizer phase; the consumer is always built
+# with the system's c++, the compiler most users have.
 #
 # Examples and benchmarks are compiled in the Release phase so that CI notices when they
 # break; ctest runs them only where an example registers a cheap smoke run through
 # sylva_add_example_smoke_test() (see the top-level CMakeLists.txt), label "smoke".
 set -euo pipefail
 
-usage() { sed -n '2,21p' "$0" | sed 's/^# \{0,1\}//'; }
+usage() { sed -n '2,22p' "$0" | sed 's/^# \{0,1\}//'; }
 
 run_main=1
 run_sanitize=0
@@ -45,6 +46,7 @@ packages=(build-essential cmake libeigen3-dev catch2 libcli11-dev nlohmann-json3
           libboost-math-dev libbenchmark-dev)
 # The sanitizer build uses clang (and its sanitizer runtimes): see the phase below.
 if ((run_sanitize)) && [[ -z "${SYLVA_SANITIZE_CXX:-}" ]]; then packages+=(clang libclang-rt-dev); fi
+if ((run_main)) && [[ "${SYLVA_CXX:-}" == clang++* ]]; then packages+=(clang); fi
 # shellcheck source=lib/install_packages.sh
 source "$repo/scripts/lib/install_packages.sh"
 sylva_install_packages "${packages[@]}"
@@ -69,12 +71,13 @@ run_ctest() {
 
 # ---- Release: tests, examples and benchmarks ---------------------------------------------
 if ((run_main)); then
-  begin "Release build (tests, examples, benchmarks) in $build_root/test"
-  # -O1 rather than CMake's Release -O3: g++ spends most of its time on these templates in
-  # the optimizer (examples/victoria_park at -O2: 117 s of g++ 12, at -O1: 85 s), and the
+  begin "Release build (tests, examples, benchmarks, ${SYLVA_CXX:-c++}) in $build_root/test"
+  # -O1 rather than CMake's Release -O3: the optimizer's share of the build time grows with
+  # the level (examples/victoria_park at -O2: 117 s of g++ 12, at -O1: 85 s), and the
   # tests and smoke runs do not need the speed (scripts/run_benchmarks.sh and
   # scripts/real_data_report.sh build what they time at -O3 in builds of their own).
   cmake -S "$repo" -B "$build_root/test" -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS_RELEASE="-O1 -DNDEBUG" \
+    ${SYLVA_CXX:+-DCMAKE_CXX_COMPILER="$SYLVA_CXX"} \
     -DSYLVA_BUILD_TESTS=ON -DSYLVA_BUILD_EXAMPLES=ON -DSYLVA_BUILD_BENCHMARKS=ON
   cmake --build "$build_root/test" -j "$jobs"
   finish "Release build"
