@@ -37,7 +37,7 @@ struct CornerOptions {
   double split_m = 0.04;
   int min_points = 6;
   double min_length_m = 0.2;
-  double min_angle_rad = 45.0 * sylva::kPi / 180.0;
+  double min_angle_rad = 45.0 * sylva::kRadPerDeg;
   double max_offset_m = 0.15;
   double sigma_m = 0.03;  ///< position uncertainty told to the filter
 };

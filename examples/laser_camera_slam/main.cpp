@@ -56,7 +56,7 @@ nlohmann::json summary(const VariantResult& r) {
           {"spurious_landmarks", r.spurious},
           {"landmark_rmse_m", r.landmark_rmse_m},
           {"final_position_error_m", r.final_position_error_m},
-          {"final_heading_error_deg", r.final_heading_error_rad / kDeg},
+          {"final_heading_error_deg", r.final_heading_error_rad / kRadPerDeg},
           {"nees_mean", r.nees_mean},
           {"nees_fraction_inside_95", r.nees_fraction_inside},
           {"paired", r.paired},
@@ -74,7 +74,7 @@ void writePictures(const std::string& prefix, const Simulation& sim, const std::
     for (std::size_t k = 0; k < r.records.size(); ++k) {
       s.time_s.push_back(sim.dt_s * static_cast<double>(k + 1));
       for (int c = 0; c < 3; ++c) {
-        const double unit = c == 2 ? 1.0 / kDeg : 1.0;
+        const double unit = c == 2 ? 1.0 / kRadPerDeg : 1.0;
         s.error[c].push_back(unit * r.records[k].error[c]);
         s.sigma[c].push_back(unit * r.records[k].sigma[c]);
       }
@@ -118,7 +118,7 @@ void writePictures(const std::string& prefix, const Simulation& sim, const std::
   map.estimated_final_pose = map.true_final_pose - e;  // error = true - estimate
   map.final_position_covariance = Mat<2, 2>::Zero();
   map.final_position_covariance.diagonal() = fused.records.back().sigma.head<2>().cwiseAbs2();
-  map.sensor_range_fov = Vec<2>(8.0, 30.0 * kDeg);
+  map.sensor_range_fov = Vec<2>(8.0, 30.0 * kRadPerDeg);
   for (const auto& s : sim.world.walls.segments()) map.walls.push_back({s.a, s.b});
   range_bearing_slam::writeSvgMap(prefix + "map.svg", map);
 }
@@ -156,8 +156,8 @@ int run(const Options& o, int seeds, bool json, const std::string& svg_prefix) {
         for (int k = 0; k < 6; ++k)
           status[sylva::describe(static_cast<sylva::LaserCameraStatus>(k))] = sim.status_counts[static_cast<std::size_t>(k)];
         one["laser_camera_status"] = status;
-        one["camera_bearing_bias_rms_deg"] = {{"uncalibrated", sim.uncalibrated_bearing_rms_rad / kDeg},
-                                              {"calibrated", sim.calibrated_bearing_rms_rad / kDeg}};
+        one["camera_bearing_bias_rms_deg"] = {{"uncalibrated", sim.uncalibrated_bearing_rms_rad / kRadPerDeg},
+                                              {"calibrated", sim.calibrated_bearing_rms_rad / kRadPerDeg}};
       }
       j["runs"].push_back(one);
       continue;
@@ -167,8 +167,8 @@ int run(const Options& o, int seeds, bool json, const std::string& svg_prefix) {
                 << fixed(sim.steps.size() * o.speed_mps * sim.dt_s, 1) << " m), world: " << sim.world.edges.size()
                 << " vertical edges (" << sim.world.doors << " doors, " << sim.world.posters << " posters, "
                 << sim.world.pillars << " pillars)\n";
-      std::cout << "camera bearing bias (RMS over the view): " << fixed(sim.uncalibrated_bearing_rms_rad / kDeg, 3)
-                << " deg uncalibrated, " << fixed(sim.calibrated_bearing_rms_rad / kDeg, 3) << " deg after the "
+      std::cout << "camera bearing bias (RMS over the view): " << fixed(sim.uncalibrated_bearing_rms_rad / kRadPerDeg, 3)
+                << " deg uncalibrated, " << fixed(sim.calibrated_bearing_rms_rad / kRadPerDeg, 3) << " deg after the "
                 << (o.calibrate ? "calibration curve" : "(no) calibration") << "\n";
       std::cout << "laser-camera sensor:";
       for (int k = 0; k < 6; ++k)
@@ -190,7 +190,7 @@ int run(const Options& o, int seeds, bool json, const std::string& svg_prefix) {
         std::cout << "  " << std::left << std::setw(15) << variantName(r.variant) << std::right << std::setw(11)
                   << r.landmarks << std::setw(10) << r.spurious << std::setw(17) << fixed(r.landmark_rmse_m, 4)
                   << std::setw(17) << fixed(r.final_position_error_m, 4) << std::setw(20)
-                  << fixed(r.final_heading_error_rad / kDeg, 3) << std::setw(11) << fixed(r.nees_mean, 2)
+                  << fixed(r.final_heading_error_rad / kRadPerDeg, 3) << std::setw(11) << fixed(r.nees_mean, 2)
                   << std::setw(13) << fixed(100.0 * r.nees_fraction_inside, 1) << std::setw(13) << r.wrong << "\n";
       std::cout << "  fused has more landmarks and a lower final error than laser corners: " << (done ? "yes" : "NO")
                 << "\n";

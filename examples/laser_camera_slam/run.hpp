@@ -30,7 +30,7 @@ using sylva::Mat;
 using sylva::Vec;
 using Filter = sylva::Ekf<sylva::Unicycle2D, sylva::Point2>;
 
-constexpr double kDeg = kPi / 180.0;
+using sylva::kRadPerDeg;
 
 struct Options {
   double perimeter_m = 40.0;
@@ -88,7 +88,7 @@ inline sylva::sim::VerticalEdgeCameraOptions cameraOptions(const Options& o) {
   c.sigma_px = o.sigma_px;
   // Systematic error left by the camera calibration and the mounting: 0.5 deg yaw, 2 %
   // scale, a cubic lens term; about 1.9 deg at the image edge.
-  c.distortion[0] = 0.5 * kDeg;
+  c.distortion[0] = 0.5 * kRadPerDeg;
   c.distortion[1] = 0.02;
   c.distortion[3] = 0.06;
   return c;
@@ -100,11 +100,11 @@ inline std::vector<sylva::CalibrationPair> calibrationPairs(const sylva::sim::Ve
                                                             int count,
                                                             sylva::sim::Rng& rng) {
   std::vector<sylva::CalibrationPair> pairs;
-  const double half = camera.halfFov() - 2.0 * kDeg;
+  const double half = camera.halfFov() - 2.0 * kRadPerDeg;
   for (int i = 0; i < count; ++i) {
     const double beta = -half + 2.0 * half * i / std::max(1, count - 1);
     const double c = camera.reportedBearing(beta, rng);
-    pairs.push_back({c, beta + 0.05 * kDeg * rng.normal()});
+    pairs.push_back({c, beta + 0.05 * kRadPerDeg * rng.normal()});
   }
   return pairs;
 }
@@ -135,7 +135,7 @@ inline Simulation simulate(const Options& o) {
   t.speed_mps = o.speed_mps;
   t.dt_s = o.dt_s;
   t.sigma_v_mps = o.sigma_v_mps;
-  t.sigma_omega_radps = o.sigma_omega_degps * kDeg;
+  t.sigma_omega_radps = o.sigma_omega_degps * kRadPerDeg;
   const LoopTrajectory2D trajectory(t);
   sim.path = trajectory.path();
   sim.dt_s = trajectory.dt();
@@ -152,7 +152,7 @@ inline Simulation simulate(const Options& o) {
     // Systematic bearing error before and after calibration over the field of view.
     double before = 0.0, after = 0.0;
     const int n = 101;
-    const double half = camera.halfFov() - 2.0 * kDeg;
+    const double half = camera.halfFov() - 2.0 * kRadPerDeg;
     for (int i = 0; i < n; ++i) {
       const double beta = -half + 2.0 * half * i / (n - 1);
       const double c = std::atan(std::tan(beta + camera.distortion(beta)));
@@ -238,10 +238,10 @@ inline std::vector<PointFeature> featuresOf(const StepData& d, Variant v) {
 inline VariantResult runVariant(const Simulation& sim, const Options& o, Variant variant) {
   const sylva::RangeBearing model;
   const sylva::InverseRangeBearing inverse;
-  const auto Q = Gaussian<2>::sigmas(Vec<2>(o.sigma_v_mps, o.sigma_omega_degps * kDeg));
+  const auto Q = Gaussian<2>::sigmas(Vec<2>(o.sigma_v_mps, o.sigma_omega_degps * kRadPerDeg));
   // JCBB gates with one noise for every measurement: Table 3.1's 5 cm and 1 deg, wider
   // than every feature's own covariance, which the update uses.
-  const auto R_gate = Gaussian<2>::sigmas(Vec<2>(0.05, 1.0 * kDeg));
+  const auto R_gate = Gaussian<2>::sigmas(Vec<2>(0.05, 1.0 * kRadPerDeg));
   const double new_gate = sylva::chiSquareGate(2, o.new_landmark_probability);
   const auto [nees_lo, nees_hi] = sylva::averageChiSquareBounds(3, 1, 0.95);
 
@@ -268,7 +268,7 @@ inline VariantResult runVariant(const Simulation& sim, const Options& o, Variant
     for (const sylva::LandmarkSlot& slot : ekf.slots()) {
       const Vec<2> dl = ekf.landmarkMean<sylva::Point2>(slot.id) - robot.head<2>();
       if (dl.norm() > 8.5) continue;
-      if (std::abs(sylva::wrapAngle(std::atan2(dl.y(), dl.x()) - robot[2])) > 100.0 * kDeg) continue;
+      if (std::abs(sylva::wrapAngle(std::atan2(dl.y(), dl.x()) - robot[2])) > 100.0 * kRadPerDeg) continue;
       candidates.push_back(slot.id);
     }
     const auto pairing = sylva::associateJcbb(ekf, model, z, R_gate, candidates, o.gate_probability);

@@ -70,7 +70,7 @@ using moving_objects::ScanGeometry;
 using nlohmann::json;
 using sylva::Vec;
 
-constexpr double kDeg = sylva::kPi / 180.0;
+using sylva::kRadPerDeg;
 constexpr int kSkipped = 77;  // ctest's SKIP_RETURN_CODE
 
 struct Options {
@@ -116,8 +116,8 @@ std::string fixed(double v, int digits) {
 
 sylva::sim::LaserScanner2DOptions scannerOptions(const Options& o) {
   sylva::sim::LaserScanner2DOptions s;
-  s.fov_rad = o.fov_deg * kDeg;
-  s.resolution_rad = o.resolution_deg * kDeg;
+  s.fov_rad = o.fov_deg * kRadPerDeg;
+  s.resolution_rad = o.resolution_deg * kRadPerDeg;
   s.max_range_m = o.max_range_m;
   s.sigma_range_m = o.sigma_range_m;
   return s;

@@ -99,7 +99,7 @@ struct SlamSceneOptions {
   double dt_s = 0.2;
   double laps = 1.2;
   double sigma_v_mps = 0.05;
-  double sigma_omega_radps = 1.0 * sylva::kPi / 180.0;
+  double sigma_omega_radps = 1.0 * sylva::kRadPerDeg;
 };
 
 struct SlamScene {

@@ -65,7 +65,7 @@ struct SlamRunOptions {
   // correlated (the radius estimate), so the bearing sigma is inflated: without people the
   // robot NEES is then 3.3 (3 expected; `moving_objects --slam-people 0 --slam-seeds 30`).
   double sigma_feature_range_m = 0.02;
-  double sigma_feature_bearing_rad = 0.25 * sylva::kPi / 180.0;
+  double sigma_feature_bearing_rad = 0.25 * sylva::kRadPerDeg;
   double gate_probability = 0.99;
   double new_landmark_probability = 0.9999;
   double memory_s = 0.0;
@@ -254,7 +254,7 @@ inline SlamResult runSlam(const SlamData& data, const SlamRunOptions& o, bool re
       const double range = d.norm();
       if (range > g.range_max_m + 1.0 || range < 1e-6) continue;
       const double bearing = sylva::wrapAngle(std::atan2(d.y(), d.x()) - robot[2]);
-      if (std::abs(bearing) > 0.5 * (g.beams - 1) * g.angle_increment_rad + 10.0 * sylva::kPi / 180.0) continue;
+      if (std::abs(bearing) > 0.5 * (g.beams - 1) * g.angle_increment_rad + 10.0 * sylva::kRadPerDeg) continue;
       candidates.push_back(slot.id);
     }
     std::vector<Vec<2>> z;

@@ -82,7 +82,7 @@
 
 namespace parking {
 
-inline constexpr double kDegToRad = sylva::kPi / 180.0;
+using sylva::kRadPerDeg;
 
 enum class State { kStart, kForward, kReverse, kStop, kLost };
 
@@ -129,8 +129,8 @@ inline const char* toString(Event e) {
 struct ControllerParams {
   double image_width_px = 1392.0;                           ///< W (Basler A102fc: 1392 x 1040)
   std::array<double, 3> reference_px{478.0, 695.0, 910.0};  ///< [u1^r, u2^r, u3^r]
-  double k1_radps_per_px = 0.25 * kDegToRad;  ///< start/reverse turn gain (Table 5.2: 0.25)
-  double k2_radps_per_px = 0.10 * kDegToRad;  ///< forward turn gain (Table 5.2: 0.1)
+  double k1_radps_per_px = 0.25 * kRadPerDeg;  ///< start/reverse turn gain (Table 5.2: 0.25)
+  double k2_radps_per_px = 0.10 * kRadPerDeg;  ///< forward turn gain (Table 5.2: 0.1)
   double c_min_px = 255.0;                    ///< Table 5.2
   double c_max_px = 470.0;                    ///< Fig. 5.15 (allowed maximum 478)
   bool adapt_c = true;                        ///< eq. 5.9; false: c = c_static_px always

@@ -32,7 +32,7 @@ namespace parking {
 
 struct RobotParams {
   double max_accel_mps2 = 0.3;                ///< Pioneer 3-AT default, 300 mm/s^2
-  double max_alpha_radps2 = 100 * kDegToRad;  ///< Pioneer 3-AT default, 100 deg/s^2
+  double max_alpha_radps2 = 100 * kRadPerDeg;  ///< Pioneer 3-AT default, 100 deg/s^2
   int substeps = 10;                          ///< integration steps per frame
   double front_m = 0.0;  ///< bump check: closest allowed approach to the station line (0: off)
 

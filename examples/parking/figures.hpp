@@ -211,7 +211,7 @@ inline void writeFeaturesSvg(const std::string& path,
   double v_max = 0.05, w_max = 5.0;
   for (const Sample& s : r.samples) {
     v_max = std::max({v_max, std::abs(s.v_cmd), std::abs(s.v)});
-    w_max = std::max({w_max, std::abs(s.omega_cmd) / kDegToRad, std::abs(s.omega) / kDegToRad});
+    w_max = std::max({w_max, std::abs(s.omega_cmd) / kRadPerDeg, std::abs(s.omega) / kRadPerDeg});
   }
   v_max *= 1.1, w_max *= 1.1;
   svg::Frame fv{0, T, -v_max, v_max, 80, fu.top + fu.height + 30, 640, 120};
@@ -265,8 +265,8 @@ inline void writeFeaturesSvg(const std::string& path,
   for (const Sample& s : r.samples) {
     v_cmd.emplace_back(s.t_s, s.v_cmd);
     v_act.emplace_back(s.t_s, s.v);
-    w_cmd.emplace_back(s.t_s, s.omega_cmd / kDegToRad);
-    w_act.emplace_back(s.t_s, s.omega / kDegToRad);
+    w_cmd.emplace_back(s.t_s, s.omega_cmd / kRadPerDeg);
+    w_act.emplace_back(s.t_s, s.omega / kRadPerDeg);
   }
   c.polyline(fv, v_cmd, "stroke=\"#444\" stroke-width=\"1.2\" stroke-dasharray=\"4,3\"");
   c.polyline(fv, v_act, "stroke=\"#000\" stroke-width=\"1.6\"");

@@ -34,7 +34,7 @@
 
 namespace {
 
-using parking::kDegToRad;
+using parking::kRadPerDeg;
 
 struct Options {
   std::uint64_t seed = 1;
@@ -50,7 +50,7 @@ struct Options {
   // Controller parameters in the units a user types (deg/s per px).
   double k1_degps_per_px = 0.25;
   double k2_degps_per_px = 0.10;
-  double max_omega_degps = 1.0 / kDegToRad;
+  double max_omega_degps = 1.0 / kRadPerDeg;
   bool no_adapt = false;
   bool raw_asymmetry = false;
   bool thesis_forward_exit = false;
@@ -66,7 +66,7 @@ std::string fixed(double v, int digits) {
 }
 
 nlohmann::json poseJson(const parking::Pose& p) {
-  return {{"x_m", p[0]}, {"y_m", p[1]}, {"heading_deg", p[2] / kDegToRad}};
+  return {{"x_m", p[0]}, {"y_m", p[1]}, {"heading_deg", p[2] / kRadPerDeg}};
 }
 
 nlohmann::json summaryJson(const parking::StudySummary& s) {
@@ -78,7 +78,7 @@ nlohmann::json summaryJson(const parking::StudySummary& s) {
           {"success_rate", s.success_rate},
           {"x_spread_m", s.x_spread_m},
           {"y_spread_m", s.y_spread_m},
-          {"heading_spread_deg", s.heading_spread_rad / kDegToRad},
+          {"heading_spread_deg", s.heading_spread_rad / kRadPerDeg},
           {"x_mean_m", s.x_mean_m},
           {"y_mean_m", s.y_mean_m},
           {"x_std_m", s.x_std_m},
@@ -93,8 +93,8 @@ nlohmann::json summaryJson(const parking::StudySummary& s) {
 nlohmann::json controllerJson(const parking::ControllerParams& p) {
   return {{"reference_px", p.reference_px},
           {"image_width_px", p.image_width_px},
-          {"k1_degps_per_px", p.k1_radps_per_px / kDegToRad},
-          {"k2_degps_per_px", p.k2_radps_per_px / kDegToRad},
+          {"k1_degps_per_px", p.k1_radps_per_px / kRadPerDeg},
+          {"k2_degps_per_px", p.k2_radps_per_px / kRadPerDeg},
           {"c_min_px", p.c_min_px},
           {"c_max_px", p.c_max_px},
           {"adapt_c", p.adapt_c},
@@ -110,7 +110,7 @@ nlohmann::json controllerJson(const parking::ControllerParams& p) {
           {"delta_u_px", p.delta_u_px},
           {"delta_A_px", p.delta_A_px},
           {"A_min_px", p.A_min_px},
-          {"max_omega_degps", p.max_omega_radps / kDegToRad}};
+          {"max_omega_degps", p.max_omega_radps / kRadPerDeg}};
 }
 
 nlohmann::json cameraJson(const parking::CameraParams& c, const parking::RobotParams& r) {
@@ -119,7 +119,7 @@ nlohmann::json cameraJson(const parking::CameraParams& c, const parking::RobotPa
           {"sigma_px", c.sigma_px},
           {"frame_rate_hz", c.frame_rate_hz},
           {"max_accel_mps2", r.max_accel_mps2},
-          {"max_alpha_degps2", r.max_alpha_radps2 / kDegToRad},
+          {"max_alpha_degps2", r.max_alpha_radps2 / kRadPerDeg},
           {"bump_distance_m", r.front_m}};
 }
 
@@ -133,7 +133,7 @@ int runOne(const Options& o,
            const parking::StationCamera& camera,
            const parking::ControllerParams& cp,
            const parking::RobotParams& robot) {
-  const parking::Pose start(o.start_x_m, o.start_y_m, o.start_heading_deg * kDegToRad);
+  const parking::Pose start(o.start_x_m, o.start_y_m, o.start_heading_deg * kRadPerDeg);
   parking::EpisodeOptions eo;
   eo.max_time_s = o.max_time_s;
   eo.record = !o.svg_prefix.empty() || !o.csv.empty();
@@ -150,7 +150,7 @@ int runOne(const Options& o,
        << " forward-reverse cycle" << (r.cycles == 1 ? "" : "s");
     if (parked)
       l2 << "; final error x " << fixed(100 * r.error[0], 2) << " cm, y "
-         << fixed(100 * r.error[1], 2) << " cm, heading " << fixed(r.error[2] / kDegToRad, 2)
+         << fixed(100 * r.error[1], 2) << " cm, heading " << fixed(r.error[2] / kRadPerDeg, 2)
          << " deg";
     const std::string path_svg = o.svg_prefix + "_path.svg";
     const std::string features_svg = o.svg_prefix + "_features.svg";
@@ -171,9 +171,9 @@ int runOne(const Options& o,
            "omega_degps,state,c_px\n"
         << std::setprecision(9);
     for (const parking::Sample& s : r.samples)
-      csv << s.t_s << "," << s.pose[0] << "," << s.pose[1] << "," << s.pose[2] / kDegToRad << ","
+      csv << s.t_s << "," << s.pose[0] << "," << s.pose[1] << "," << s.pose[2] / kRadPerDeg << ","
           << s.u_px[0] << "," << s.u_px[1] << "," << s.u_px[2] << "," << s.v_cmd << ","
-          << s.omega_cmd / kDegToRad << "," << s.v << "," << s.omega / kDegToRad << ","
+          << s.omega_cmd / kRadPerDeg << "," << s.v << "," << s.omega / kRadPerDeg << ","
           << parking::toString(s.state) << "," << s.c_px << "\n";
     written.push_back(o.csv);
   }
@@ -193,7 +193,7 @@ int runOne(const Options& o,
     j["final_pose"] = poseJson(r.final_pose);
     j["final_error"] = {{"x_m", r.error[0]},
                         {"y_m", r.error[1]},
-                        {"heading_deg", r.error[2] / kDegToRad},
+                        {"heading_deg", r.error[2] / kRadPerDeg},
                         {"position_m", std::hypot(r.error[0], r.error[1])}};
     j["min_station_distance_m"] = r.min_station_distance_m;
     nlohmann::json trace = nlohmann::json::array();
@@ -219,7 +219,7 @@ int runOne(const Options& o,
   std::cout << "parking: start (" << fixed(start[0], 3) << ", " << fixed(start[1], 3)
             << ") m, heading " << fixed(o.start_heading_deg, 1) << " deg; goal ("
             << fixed(r.goal[0], 4) << ", " << fixed(r.goal[1], 4) << ") m, heading "
-            << fixed(r.goal[2] / kDegToRad, 2) << " deg\n"
+            << fixed(r.goal[2] / kRadPerDeg, 2) << " deg\n"
             << "  " << noiseLine(camera.params()) << "; seed " << o.seed << "\n"
             << "  c: "
             << (cp.adapt_c ? "adaptive in [" + fixed(cp.c_min_px, 0) + ", " +
@@ -235,7 +235,7 @@ int runOne(const Options& o,
               << parking::toString(t.from) << " -> " << std::setw(7) << std::left
               << parking::toString(t.to) << std::right << "  " << std::setw(5)
               << parking::toString(t.event) << "  c = " << fixed(t.c_px, 1) << " px  at ("
-              << fixed(p[0], 3) << ", " << fixed(p[1], 3) << ") m, " << fixed(p[2] / kDegToRad, 1)
+              << fixed(p[0], 3) << ", " << fixed(p[1], 3) << ") m, " << fixed(p[2] / kRadPerDeg, 1)
               << " deg\n";
   }
   std::cout << "outcome: " << parking::toString(r.outcome) << " after " << fixed(r.time_s, 2)
@@ -244,7 +244,7 @@ int runOne(const Options& o,
             << r.reverse_moves << " reverse move" << (r.reverse_moves == 1 ? "" : "s") << ")\n"
             << "final pose error" << (parked ? "" : " (not parked)") << ": x "
             << fixed(100 * r.error[0], 2) << " cm (lateral), y " << fixed(100 * r.error[1], 2)
-            << " cm (along the axis), heading " << fixed(r.error[2] / kDegToRad, 2) << " deg\n"
+            << " cm (along the axis), heading " << fixed(r.error[2] / kRadPerDeg, 2) << " deg\n"
             << "closest approach to the station: " << fixed(r.min_station_distance_m, 3) << " m\n";
   for (const std::string& f : written) std::cout << "wrote " << f << "\n";
   return parked ? 0 : 3;
@@ -450,7 +450,7 @@ int main(int argc, char** argv) {
   app.add_option("--max-omega", o.max_omega_degps, "turn-rate limit (deg/s)")
       ->check(pos)
       ->capture_default_str();
-  double alpha_degps2 = robot.max_alpha_radps2 / kDegToRad;
+  double alpha_degps2 = robot.max_alpha_radps2 / kRadPerDeg;
   app.add_option("--accel", robot.max_accel_mps2, "robot acceleration limit (m/s^2, 0: none)")
       ->check(nonneg)
       ->capture_default_str();
@@ -495,13 +495,13 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
 
   try {
-    cp.k1_radps_per_px = o.k1_degps_per_px * kDegToRad;
-    cp.k2_radps_per_px = o.k2_degps_per_px * kDegToRad;
-    cp.max_omega_radps = o.max_omega_degps * kDegToRad;
+    cp.k1_radps_per_px = o.k1_degps_per_px * kRadPerDeg;
+    cp.k2_radps_per_px = o.k2_degps_per_px * kRadPerDeg;
+    cp.max_omega_radps = o.max_omega_degps * kRadPerDeg;
     cp.adapt_c = !o.no_adapt;
     cp.scaled_asymmetry = !o.raw_asymmetry;
     cp.exit_on_width = !o.thesis_forward_exit;
-    robot.max_alpha_radps2 = alpha_degps2 * kDegToRad;
+    robot.max_alpha_radps2 = alpha_degps2 * kRadPerDeg;
     cp.image_width_px = camera_params.image_width_px;
     cp.validate();
     robot.validate();

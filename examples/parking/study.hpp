@@ -61,7 +61,7 @@ struct StudyOptions {
 inline Pose drawStart(const StationCamera& camera, const StudyOptions& o, sylva::sim::Rng& rng) {
   const double r = o.r_min_m < o.r_max_m ? rng.uniform(o.r_min_m, o.r_max_m) : o.r_min_m;
   const double phi =
-      o.max_angle_deg > 0.0 ? rng.uniform(-o.max_angle_deg, o.max_angle_deg) * kDegToRad : 0.0;
+      o.max_angle_deg > 0.0 ? rng.uniform(-o.max_angle_deg, o.max_angle_deg) * kRadPerDeg : 0.0;
   Pose start(r * std::sin(phi), -r * std::cos(phi), 0.0);
   const double toward_p2 = std::atan2(-start[1], -start[0]);
   const double W = camera.params().image_width_px;
@@ -69,7 +69,7 @@ inline Pose drawStart(const StationCamera& camera, const StudyOptions& o, sylva:
     const double offset = o.max_heading_offset_deg > 0.0
                               ? rng.uniform(-o.max_heading_offset_deg, o.max_heading_offset_deg)
                               : 0.0;
-    start[2] = sylva::wrapAngle(toward_p2 + offset * kDegToRad);
+    start[2] = sylva::wrapAngle(toward_p2 + offset * kRadPerDeg);
     const StationView v = camera.view(start);
     if (v.allVisible() && v.u[0] >= o.margin_px && v.u[2] <= W - o.margin_px) return start;
   }

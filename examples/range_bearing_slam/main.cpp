@@ -121,7 +121,7 @@ using sylva::Mat;
 using sylva::Vec;
 using Filter = sylva::Ekf<sylva::Unicycle2D, sylva::Point2>;
 
-constexpr double kDeg = kPi / 180.0;
+using sylva::kRadPerDeg;
 
 enum class Association { kKnown, kNearestNeighbor, kJcbb };
 
@@ -195,16 +195,16 @@ sylva::sim::LoopTrajectory2DOptions trajectoryOptions(const Options& o) {
   t.speed_mps = o.speed_mps;
   t.dt_s = o.dt_s;
   t.sigma_v_mps = o.sigma_v_mps;
-  t.sigma_omega_radps = o.sigma_omega_degps * kDeg;
+  t.sigma_omega_radps = o.sigma_omega_degps * kRadPerDeg;
   return t;
 }
 
 sylva::sim::RangeBearingSensor2DOptions sensorOptions(const Options& o) {
   sylva::sim::RangeBearingSensor2DOptions s;
   s.max_range_m = o.max_range_m;
-  s.fov_half_angle_rad = o.fov_half_angle_deg * kDeg;
+  s.fov_half_angle_rad = o.fov_half_angle_deg * kRadPerDeg;
   s.sigma_range_m = o.sigma_range_m;
-  s.sigma_bearing_rad = o.sigma_bearing_deg * kDeg;
+  s.sigma_bearing_rad = o.sigma_bearing_deg * kRadPerDeg;
   return s;
 }
 
@@ -221,8 +221,8 @@ World makeWorld(const Options& o) {
     sylva::fail(sylva::ErrorCode::kInvalidArgument,
                 "--steps must be 0 (1.2 laps) or at least 2: the robot-pose NEES starts at step 1");
   const double k = o.filter_noise_scale;
-  const auto q = Gaussian<2>::sigmas(k * Vec<2>(o.sigma_v_mps, o.sigma_omega_degps * kDeg));
-  const auto r = Gaussian<2>::sigmas(k * Vec<2>(o.sigma_range_m, o.sigma_bearing_deg * kDeg));
+  const auto q = Gaussian<2>::sigmas(k * Vec<2>(o.sigma_v_mps, o.sigma_omega_degps * kRadPerDeg));
+  const auto r = Gaussian<2>::sigmas(k * Vec<2>(o.sigma_range_m, o.sigma_bearing_deg * kRadPerDeg));
   const Association association = o.association == "nn"     ? Association::kNearestNeighbor
                                   : o.association == "jcbb" ? Association::kJcbb
                                                             : Association::kKnown;
@@ -234,7 +234,7 @@ World makeWorld(const Options& o) {
 /// the uncertainty): the candidates offered to nn and jcbb.
 std::vector<Id> candidates(const Filter& ekf, const World& world) {
   constexpr double kRangeMargin_m = 1.0;
-  constexpr double kBearingMargin_rad = 10.0 * kDeg;
+  constexpr double kBearingMargin_rad = 10.0 * kRadPerDeg;
   const auto& sensor = world.sensor.options();
   const Vec<3> robot = ekf.robotMean();
   std::vector<Id> out;
@@ -529,7 +529,7 @@ int run(const Options& o) {
             << fixed(static_cast<double>(landmarks_mapped) / runs, 1)
             << " mapped landmarks per run)\n";
   std::cout << "  final pose error          " << fixed(final_position_error, 4) << " m, "
-            << fixed(final_heading_error / kDeg, 3) << " deg\n";
+            << fixed(final_heading_error / kRadPerDeg, 3) << " deg\n";
   std::cout << "  odometry-only pose error  " << fixed(odometry_error, 4) << " m\n";
   std::cout << "  robot NEES mean           " << fixed(nees_mean, 3) << "  95% bounds ["
             << fixed(lo, 3) << ", " << fixed(hi, 3) << "] -> "

@@ -222,7 +222,7 @@ RunResult runSlam(const ds::VictoriaParkData& data, const Config& cfg, const std
       const Vec<2> d = l - sensor;
       if (d.norm() > cfg.max_range_m + 5.0) continue;
       const double bearing = sylva::wrapAngle(std::atan2(d.y(), d.x()) - x[2]);
-      if (std::abs(bearing) > 100.0 * sylva::kPi / 180.0) continue;
+      if (std::abs(bearing) > 100.0 * sylva::kRadPerDeg) continue;
       candidates.push_back(s.id);
     }
 

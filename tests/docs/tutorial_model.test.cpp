@@ -118,14 +118,13 @@ struct Bearing {
 
   template <typename T>
   sylva::Vec<1, T> predict(const sylva::Vec<3, T>& robot, const sylva::Vec<2, T>& landmark) const {
-    using std::atan2;
     const T dx = landmark[0] - robot[0];
     const T dy = landmark[1] - robot[1];
     // No bearing to a landmark on top of the robot: say so instead of returning garbage.
     if (!(sylva::scalarValue(T(dx * dx + dy * dy)) > 1e-18))
       sylva::fail(sylva::ErrorCode::kDegenerateGeometry, "Bearing: landmark at the robot position");
     sylva::Vec<1, T> z;
-    z[0] = sylva::wrapAngle(T(atan2(dy, dx) - robot[2]));
+    z[0] = sylva::wrapAngle(T(sylva::atan2Generic(dy, dx) - robot[2]));
     return z;
   }
 

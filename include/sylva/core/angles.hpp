@@ -9,6 +9,8 @@
 namespace sylva {
 
 inline constexpr double kPi = 3.14159265358979323846;
+/// Radians per degree: `30.0 * kRadPerDeg` is 30 degrees in radians.
+inline constexpr double kRadPerDeg = kPi / 180.0;
 
 /// Wraps an angle in radians to (-pi, pi]. Templated so that autodiff scalars pass through
 /// (the wrap is a shift by a multiple of 2 pi, whose derivative is 1).

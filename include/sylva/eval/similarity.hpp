@@ -12,6 +12,7 @@
 
 #include <cmath>
 #include <sstream>
+#include <type_traits>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -35,7 +36,16 @@ struct Similarity3 {
 /// kInvalidArgument for different sizes or fewer than 3 pairs, kNonFinite for NaN/Inf, and
 /// kDegenerateGeometry when the true points are (nearly) collinear, where the rotation about
 /// their line is undetermined.
-inline Similarity3 alignSimilarity(const std::vector<Vec<3>>& estimated, const std::vector<Vec<3>>& truth) {
+///
+/// `Scalar` is double for every caller (it is deduced, or defaults to double for braced
+/// lists); it is a template parameter only so that the body is a template: a translation
+/// unit that includes this header without calling the function then does not instantiate
+/// Eigen's SVD and `umeyama` (about 5 s of g++ 12 per translation unit).
+template <typename Scalar = double>
+Similarity3 alignSimilarity(const std::vector<Eigen::Matrix<Scalar, 3, 1>>& estimated,
+                            const std::vector<Eigen::Matrix<Scalar, 3, 1>>& truth) {
+  static_assert(std::is_same_v<Scalar, double>, "alignSimilarity works on Vec<3> (double) points");
+  using Points = Eigen::Matrix<Scalar, 3, Eigen::Dynamic>;
   if (estimated.size() != truth.size()) {
     std::ostringstream os;
     os << "alignSimilarity: " << estimated.size() << " estimated points but " << truth.size() << " true points";
@@ -43,29 +53,29 @@ inline Similarity3 alignSimilarity(const std::vector<Vec<3>>& estimated, const s
   }
   const int n = static_cast<int>(truth.size());
   if (n < 3) fail(ErrorCode::kInvalidArgument, "alignSimilarity: need at least 3 point pairs, got " + std::to_string(n));
-  Eigen::Matrix3Xd src(3, n);
-  Eigen::Matrix3Xd dst(3, n);
+  Points src(3, n);
+  Points dst(3, n);
   for (int i = 0; i < n; ++i) {
     if (!estimated[i].allFinite() || !truth[i].allFinite())
       fail(ErrorCode::kNonFinite, "alignSimilarity: point pair " + std::to_string(i) + " is not finite");
     src.col(i) = estimated[i];
     dst.col(i) = truth[i];
   }
-  const auto singular = [](const Eigen::Matrix3Xd& m) {
-    const Eigen::Matrix3Xd centred = m.colwise() - m.rowwise().mean();
-    return Eigen::JacobiSVD<Eigen::Matrix3Xd>(centred).singularValues();
+  const auto singular = [](const Points& m) {
+    const Points centred = m.colwise() - m.rowwise().mean();
+    return Eigen::JacobiSVD<Points>(centred).singularValues();
   };
   const Vec<3> s_truth = singular(dst);
   const Vec<3> s_est = singular(src);
   if (!(s_truth[1] > 1e-9 * s_truth[0]) || !(s_est[1] > 1e-9 * s_est[0]))
     fail(ErrorCode::kDegenerateGeometry,
          "alignSimilarity: the points are (nearly) collinear or coincident; the alignment is undetermined");
-  const Mat<4, 4> T = Eigen::umeyama(src, dst, true);
+  const Eigen::Matrix<Scalar, 4, 4> T = Eigen::umeyama(src, dst, true);
   Similarity3 out;
-  const Mat<3, 3> sR = T.topLeftCorner<3, 3>();
+  const Mat<3, 3> sR = T.template topLeftCorner<3, 3>();
   out.scale = std::cbrt(sR.determinant());
   out.rotation = sR / out.scale;
-  out.translation = T.topRightCorner<3, 1>();
+  out.translation = T.template topRightCorner<3, 1>();
   return out;
 }
 

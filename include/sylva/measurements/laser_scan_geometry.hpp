@@ -11,7 +11,7 @@ namespace sylva {
 /// The beams of a planar scan: a_k = angle_min + k * increment, k = 0 .. beams - 1.
 struct LaserScanGeometry {
   double angle_min_rad = -0.5 * kPi;
-  double angle_increment_rad = 0.5 * kPi / 180.0;
+  double angle_increment_rad = 0.5 * kRadPerDeg;
   int beams = 361;
   double min_range_m = 0.05;  ///< readings below are invalid
   double max_range_m = 8.0;   ///< readings above are "no return"
