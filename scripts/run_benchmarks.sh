@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Regenerates docs/benchmarks.md (and docs/images/benchmarks_step.svg) and
 # docs/update-benchmarks.md (and docs/update-benchmarks.svg):
-#   1. the build time of tests and examples from a clean tree (scripts/measure_build_time.sh;
+#   1. the build time of tests and examples from a clean tree, once with the system's c++
+#      (g++ on Debian) and once with clang++ (what CI uses) (scripts/measure_build_time.sh;
 #      SKIP_BUILD_TIME=1 leaves it out and keeps the last JSON if there is one),
 #   2. a Release build of the benchmarks with -march=native in BUILD_DIR (default
 #      build-bench-native; CXX picks the compiler at the first configure, default clang++ when
@@ -32,8 +33,9 @@ sylva_install_packages build-essential cmake ninja-build clang libeigen3-dev lib
   libcli11-dev nlohmann-json3-dev catch2 libboost-math-dev gnuplot-nox python3
 
 if [[ "${SKIP_BUILD_TIME:-0}" != 1 ]]; then
-  echo "==> build time of tests and examples from a clean tree"
-  bash "${root}/scripts/measure_build_time.sh" "${root}/build/build-times.json"
+  echo "==> build time of tests and examples from a clean tree (system c++, then clang++)"
+  CXX= bash "${root}/scripts/measure_build_time.sh" "${root}/build/build-times.json"
+  CXX=clang++ bash "${root}/scripts/measure_build_time.sh" "${root}/build/build-times-clang.json"
 fi
 
 if [[ ! -f "${build_dir}/CMakeCache.txt" && -z "${CXX:-}" ]] && command -v clang++ > /dev/null; then
@@ -63,7 +65,10 @@ if [[ "${SKIP_PEERS:-0}" != 1 ]]; then
 fi
 
 build_times=()
-[[ -f "${root}/build/build-times.json" ]] && build_times=(--build-times "${root}/build/build-times.json")
+for f in "${root}/build/build-times.json" "${root}/build/build-times-clang.json"; do
+  if [[ -f "$f" ]]; then build_times+=("$f"); fi
+done
+if ((${#build_times[@]})); then build_times=(--build-times "${build_times[@]}"); fi
 python3 "${root}/scripts/step_report.py" --step "${build_dir}/bench_slam_step.json" \
   --forest "${build_dir}/bench_forest_slam.json" "${peer_args[@]}" "${build_times[@]}" \
   --out "${root}/docs/benchmarks.md" --plot "${root}/docs/images/benchmarks_step.svg" \

@@ -9,7 +9,7 @@ Inputs (Google Benchmark JSON unless said otherwise):
   --peers-native FILE..  bench_peers_native, one file per N (optional: needs MRPT)
   --peers-baseline FILE..  bench_peers_baseline, the same for sylva built for baseline x86-64
   --forest FILE          bench_forest_slam: the monocular frame split (optional)
-  --build-times FILE     scripts/measure_build_time.sh's JSON (optional)
+  --build-times FILE...  scripts/measure_build_time.sh's JSON, one per compiler (optional)
 Outputs: --out (Markdown), --plot (SVG, drawn by gnuplot).
 
 Every time is the median over the benchmark's repetitions (CPU time). Ratios pair figures of
@@ -108,7 +108,7 @@ def main():
     ap.add_argument("--peers-native", nargs="*", default=[])
     ap.add_argument("--peers-baseline", nargs="*", default=[])
     ap.add_argument("--forest")
-    ap.add_argument("--build-times")
+    ap.add_argument("--build-times", nargs="*", default=[])
     ap.add_argument("--out", required=True)
     ap.add_argument("--plot", required=True)
     ap.add_argument("--command", default="bash scripts/run_benchmarks.sh")
@@ -285,15 +285,22 @@ def main():
                     f"{med[p]:.1f} ({100 * med[p] / med['profiled_us']:.0f}%)" for p in phases) + f" | {med['profiled_us']:.0f} |")
             md.append("")
 
-    if a.build_times and os.path.exists(a.build_times):
-        bt = json.load(open(a.build_times, encoding="utf-8"))
+    builds = [json.load(open(f, encoding="utf-8")) for f in a.build_times if os.path.exists(f)]
+    if builds:
         md.append("## Build time\n")
-        md.append(f"Tests and examples from a clean tree (`bash scripts/measure_build_time.sh`): "
-                  f"**{bt['wall_seconds']:.0f} s** wall with {bt['jobs']} jobs on {bt['cores']} cores, "
-                  f"{bt['compiler']}, Release; {sum(o['seconds'] for o in bt['objects']):.0f} s of compiling "
-                  f"in {len(bt['objects'])} objects. The slowest:\n")
+        md.append("Tests and examples from a clean tree, Release, one build per compiler "
+                  "(`bash scripts/measure_build_time.sh`, with `CXX=clang++` for the second; CI builds "
+                  "with clang++, `bash scripts/test.sh` on its own with the system's c++):\n")
+        md.append("| compiler | wall | jobs / cores | compiling, summed over objects | objects | slowest object |")
+        md.append("|---|---|---|---|---|---|")
+        for bt in builds:
+            slow = bt["objects"][0] if bt["objects"] else {"object": "-", "seconds": 0}
+            md.append(f"| {bt['compiler']} | **{bt['wall_seconds']:.0f} s** | {bt['jobs']} / {bt['cores']} | "
+                      f"{sum(o['seconds'] for o in bt['objects']):.0f} s | {len(bt['objects'])} | "
+                      f"`{slow['object']}`, {slow['seconds']:.0f} s |")
+        md.append("\nThe ten slowest objects of the first build:\n")
         md.append("| object | seconds |\n|---|---|")
-        for o in bt["objects"][:10]:
+        for o in builds[0]["objects"][:10]:
             md.append(f"| `{o['object']}` | {o['seconds']:.0f} |")
         md.append("")
 
