@@ -235,10 +235,9 @@ def main():
         md.append(f"\nFitted exponents of time against n over N = {FIT[0]}..{FIT[1]}: batched {exponent:.2f}, "
                   f"sequential {seq_exp:.2f}, full bound {bound_exp:.2f}.\n")
     if gemm and TARGET_N in batched:
-        n = 3 + 2 * TARGET_N
         obs = counters["StepBatched"][TARGET_N].get("observations_per_step", 12.0)
-        flops = 2 * obs * n * n  # rank-(2k) update of the lower triangle: 2k * n^2 / 2 FMAs
-        compute = flops / gemm
+        compute = floor_time(TARGET_N)
+        flops = compute * gemm
         md.append(f"At N = {TARGET_N} the rank-{2 * obs:.0f} update of the lower triangle is {flops / 1e6:.0f} MFLOP, "
                   f"{t(compute)} at the GEMM peak of this run: the batched step is "
                   f"{batched[TARGET_N] / compute:.2f}x that compute bound and {r1000:.2f}x the memory bound. "

@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include <sylva/core/angles.hpp>
 #include <sylva/core/error.hpp>
 #include <sylva/core/types.hpp>
 
@@ -93,7 +94,7 @@ class Document {
   void star(const View& v, const Vec<2>& c, double r_px, const std::string& style) {
     body_ << "<polygon " << style << " points=\"";
     for (int k = 0; k < 10; ++k) {
-      const double a = -3.14159265358979 / 2 + k * 3.14159265358979 / 5;
+      const double a = -sylva::kPi / 2 + k * sylva::kPi / 5;
       const double r = (k % 2 == 0) ? r_px : 0.45 * r_px;
       body_ << (k ? " " : "") << num(v.px(c.x()) + r * std::cos(a)) << "," << num(v.py(c.y()) + r * std::sin(a));
     }

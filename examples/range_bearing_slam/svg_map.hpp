@@ -16,6 +16,7 @@
 
 #include <Eigen/Eigenvalues>
 
+#include <sylva/core/angles.hpp>
 #include <sylva/core/error.hpp>
 #include <sylva/core/types.hpp>
 
@@ -117,7 +118,7 @@ inline std::string ellipse(
   const Vec<2> radii = k * eig.eigenvalues().cwiseMax(0.0).cwiseSqrt() * v.scale;
   const Vec<2> major = eig.eigenvectors().col(1);
   // SVG rotates clockwise in screen coordinates, whose y points down: negate the angle.
-  const double angle_deg = -std::atan2(major.y(), major.x()) * 180.0 / 3.14159265358979323846;
+  const double angle_deg = -std::atan2(major.y(), major.x()) * 180.0 / sylva::kPi;
   std::ostringstream os;
   os << "<ellipse cx=\"" << num(v.px(c.x())) << "\" cy=\"" << num(v.py(c.y())) << "\" rx=\""
      << num(radii[1], 3) << "\" ry=\"" << num(radii[0], 3) << "\" transform=\"rotate("
@@ -295,7 +296,7 @@ inline void writeSvgMap(const std::string& file, const SvgMapData& d) {
     const Vec<2> b = p.head<2>() + r * Vec<2>(std::cos(p[2] + half), std::sin(p[2] + half));
     svg << "<path d=\"M" << num(main.px(p[0])) << " " << num(main.py(p[1])) << "L"
         << num(main.px(a.x())) << " " << num(main.py(a.y())) << "A" << num(r * scale) << " "
-        << num(r * scale) << " 0 " << (half > 0.5 * 3.14159265358979323846 ? 1 : 0) << " 0 "
+        << num(r * scale) << " 0 " << (half > 0.5 * sylva::kPi ? 1 : 0) << " 0 "
         << num(main.px(b.x())) << " " << num(main.py(b.y())) << "Z\" class=\"fov\"/>\n";
   }
   for (const auto& w : d.walls)

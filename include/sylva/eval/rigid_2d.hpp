@@ -41,7 +41,8 @@ struct Rigid2 {
 
 /// `Scalar` is double for every caller (deduced, or the default for braced lists); it makes
 /// the body a template so that a translation unit that includes this header without calling
-/// the function does not instantiate `Eigen::umeyama` (about 3.5 s of g++ 12 each).
+/// the function does not instantiate `Eigen::umeyama` (3.5 s of g++ 12 for a file that
+/// includes only this header).
 template <typename Scalar = double>
 Rigid2 alignRigid2(const std::vector<Eigen::Matrix<Scalar, 2, 1>>& estimated,
                    const std::vector<Eigen::Matrix<Scalar, 2, 1>>& truth) {

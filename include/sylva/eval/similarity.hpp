@@ -40,7 +40,7 @@ struct Similarity3 {
 /// `Scalar` is double for every caller (it is deduced, or defaults to double for braced
 /// lists); it is a template parameter only so that the body is a template: a translation
 /// unit that includes this header without calling the function then does not instantiate
-/// Eigen's SVD and `umeyama` (about 5 s of g++ 12 per translation unit).
+/// Eigen's SVD and `umeyama` (5 s of g++ 12 for a file that includes only this header).
 template <typename Scalar = double>
 Similarity3 alignSimilarity(const std::vector<Eigen::Matrix<Scalar, 3, 1>>& estimated,
                             const std::vector<Eigen::Matrix<Scalar, 3, 1>>& truth) {

@@ -276,15 +276,15 @@ class BasicEkf {
     Mat<kRobotDim, kRobotDim> F;
     Mat<kRobotDim, kNoiseDim> G;
     const RobotState next = robot_(robotMean(), u, dt, F, G);
+    if constexpr (detail::HasFirstEstimatesJacobian<Robot>::value) {
+      // FEJ: the transition Jacobian between the previous prediction and this one.
+      if (linearization_ == LinearizationPoint::kFirstEstimates && next.allFinite())
+        F = Robot::firstEstimatesJacobian(RobotState(first_.template head<kRobotDim>()), next);
+    }
     if (!next.allFinite() || !F.allFinite() || !G.allFinite())
       fail(ErrorCode::kNonFinite, "Ekf::predict: motion model produced a non-finite state or Jacobian");
 
     const RobotCovariance GQGt = G * noise.covariance() * G.transpose();
-    if constexpr (detail::HasFirstEstimatesJacobian<Robot>::value) {
-      // FEJ: the transition Jacobian between the previous prediction and this one.
-      if (linearization_ == LinearizationPoint::kFirstEstimates)
-        F = Robot::firstEstimatesJacobian(RobotState(first_.template head<kRobotDim>()), next);
-    }
     // From here on nothing can fail.
     mean_.template head<kRobotDim>() = next;
     first_.template head<kRobotDim>() = next;

@@ -82,10 +82,10 @@ namespace sylva {
 
 struct LaserCameraOptions {
   double camera_above_laser_m = 0.19;          ///< b of Fig. 3.5 (thesis: 19 cm), >= 0
-  double sigma_bearing_rad = kPi / 180.0;      ///< camera bearing noise (Table 3.1: 1 deg), > 0
+  double sigma_bearing_rad = kRadPerDeg;      ///< camera bearing noise (Table 3.1: 1 deg), > 0
   double sigma_reading_m = 0.01;               ///< noise of one laser reading, > 0
   double max_jump_m = 0.10;                    ///< larger neighbour differences are a jump, > 0
-  double max_incidence_rad = 80.0 * kPi / 180.0;  ///< in (0, pi/2]
+  double max_incidence_rad = 80.0 * kRadPerDeg;  ///< in (0, pi/2]
   double plane_margin = 0.01;                  ///< tolerance of step 6 (normalized image units), >= 0
   bool near_side_at_jumps = false;             ///< step 4: extrapolate the nearer surface
   /// Model error of eq. 3.4' where the surface bends between the two beams (a corner, the

@@ -21,6 +21,7 @@
 #include <utility>
 #include <vector>
 
+#include "sylva/core/angles.hpp"
 #include "sylva/core/error.hpp"
 #include "sylva/core/types.hpp"
 #include "sylva/measurements/pinhole_camera.hpp"
@@ -36,7 +37,7 @@ namespace sylva::sim {
 inline std::vector<Vec<2>> defaultForestWaypoints() {
   std::vector<Vec<2>> points;
   for (int k = 0; k < 8; ++k) {
-    const double a = k * 3.14159265358979323846 / 4.0;
+    const double a = k * kPi / 4.0;
     const double radius = k % 2 == 0 ? 9.5 : 8.0;
     points.emplace_back(radius * std::cos(a), radius * std::sin(a));
   }

@@ -20,6 +20,7 @@
 
 #include <Eigen/Geometry>
 
+#include "sylva/core/angles.hpp"
 #include "sylva/core/error.hpp"
 #include "sylva/core/types.hpp"
 #include "sylva/sim/bezier_loop_2d.hpp"
@@ -31,7 +32,7 @@ struct TrajectoryOptions {
   double dt_s = 0.1;
   int laps = 2;
   double camera_height_m = 1.5;
-  double pitch_rad = 15.0 * 3.14159265358979323846 / 180.0;
+  double pitch_rad = 15.0 * kRadPerDeg;
 
   void validate() const {
     std::ostringstream os;

@@ -53,7 +53,7 @@ namespace sylva::sim {
 
 struct LaserScanner2DOptions {
   double fov_rad = kPi;                       ///< total field of view, in (0, 2 pi]
-  double resolution_rad = 0.5 * kPi / 180.0;  ///< angle between neighbouring beams, > 0
+  double resolution_rad = 0.5 * kRadPerDeg;  ///< angle between neighbouring beams, > 0
   double min_range_m = 0.05;                  ///< >= 0; closer hits read NaN
   double max_range_m = 8.0;                   ///< > min_range; farther hits read +infinity
   double sigma_range_m = 0.01;                ///< range noise, >= 0 (SICK LMS200: about 1 cm)

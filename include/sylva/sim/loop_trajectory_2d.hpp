@@ -46,7 +46,7 @@ struct LoopTrajectory2DOptions {
   double speed_mps = 1.0;        ///< forward speed (adjusted slightly, see the file comment)
   double dt_s = 0.1;             ///< time step
   double sigma_v_mps = 0.005;    ///< odometry noise on v (Table 3.1: 0.5 cm/s)
-  double sigma_omega_radps = 0.025 * kPi / 180.0;  ///< odometry noise on omega (0.025 deg/s)
+  double sigma_omega_radps = 0.025 * kRadPerDeg;  ///< odometry noise on omega (0.025 deg/s)
 };
 
 /// One simulated step: the control applied during the step, the true pose at its end and

@@ -36,7 +36,7 @@ struct RangeBearingSensor2DOptions {
   double min_range_m = 0.1;                      ///< >= 0; closer landmarks are not seen
   double fov_half_angle_rad = 0.5 * kPi;         ///< in (0, pi]
   double sigma_range_m = 0.05;                   ///< Table 3.1: 5 cm
-  double sigma_bearing_rad = 1.0 * kPi / 180.0;  ///< Table 3.1: 1 deg
+  double sigma_bearing_rad = 1.0 * kRadPerDeg;  ///< Table 3.1: 1 deg
 };
 
 /// One reading: which landmark (the simulator's id, for known association and evaluation)
