@@ -32,12 +32,24 @@ std::pair<sylva::eval::Similarity3, double> alignMap(
   return {T, sylva::eval::meanSquaredError(T, est, truth)};
 }
 
-double cameraPoseNees(const Vec<13>& estimate, const Mat<13, 13>& P, const Vec<13>& truth) {
+PoseNees cameraPoseNees(const Vec<13>& estimate, const Mat<13, 13>& P, const Vec<13>& truth) {
+  const auto orInfinity = [](auto&& f) {
+    try {
+      return f();
+    } catch (const sylva::Error&) {
+      return std::numeric_limits<double>::infinity();
+    }
+  };
+  const double inf = std::numeric_limits<double>::infinity();
+  sylva::CameraPoseError err;
   try {
-    return sylva::cameraPoseNees(estimate, P, truth);
+    err = sylva::cameraPoseError(estimate, P, truth);
   } catch (const sylva::Error&) {
-    return std::numeric_limits<double>::infinity();
+    return {inf, inf, inf};
   }
+  return {orInfinity([&] { return sylva::nees(err.e, err.S); }),
+          orInfinity([&] { return sylva::nees(Vec<3>(err.e.head<3>()), Mat<3, 3>(err.S.topLeftCorner<3, 3>())); }),
+          orInfinity([&] { return sylva::nees(Vec<3>(err.e.tail<3>()), Mat<3, 3>(err.S.bottomRightCorner<3, 3>())); })};
 }
 
 RunResult runForestSlam(const sylva::sim::ForestScenario& scenario,
@@ -56,15 +68,25 @@ RunResult runForestSlam(const sylva::sim::ForestScenario& scenario,
   std::vector<std::pair<Id, Vec<3>>> end_of_lap1;
   const int last_lap = frames[n_frames - 1].lap;
   const auto start = std::chrono::steady_clock::now();
+  const bool needs_truth = options.linearization == sylva::LinearizationPoint::kIdeal || options.unbiased_point_uv;
+  FrameTruth frame_truth;
+  frame_truth.trees = &scenario.trees;
   for (int k = 0; k < n_frames; ++k) {
     const double dt = k == 0 ? 0.0 : frames[k].t_s - frames[k - 1].t_s;
-    const FrameReport report = slam.processFrame(dt, scenario.observations[k]);
+    frame_truth.camera_before = frames[k == 0 ? 0 : k - 1].state;
+    frame_truth.camera = frames[k].state;
+    const FrameReport report =
+        slam.processFrame(dt, scenario.observations[k], needs_truth ? &frame_truth : nullptr);
     result.rejected += report.rejected;
     result.hypotheses += report.hypotheses;
+    for (std::size_t t = 0; t < 4; ++t) result.nis[t].merge(report.nis[t]);
     estimated_path.push_back(slam.filter().robotMean().head<3>());
-    if (nees_every > 0 && k % nees_every == 0)
-      result.pose_nees.push_back(cameraPoseNees(
-          slam.filter().robotMean(), slam.filter().robotCovariance(), frames[k].state));
+    if (nees_every > 0 && k % nees_every == 0) {
+      const PoseNees n = cameraPoseNees(slam.filter().robotMean(), slam.filter().robotCovariance(), frames[k].state);
+      result.pose_nees.push_back(n.pose);
+      result.position_nees.push_back(n.position);
+      result.orientation_nees.push_back(n.orientation);
+    }
     const bool lap1_ends = frames[k].lap == 0 && (k + 1 == n_frames || frames[k + 1].lap > 0);
     if (lap1_ends) end_of_lap1 = euclideanLandmarks(slam.filter());
   }

@@ -44,6 +44,11 @@ struct RunResult {
   int hypotheses = 0;
   double runtime_s = 0.0;
   std::vector<double> pose_nees;  ///< every `nees_every` frames, from frame 0
+  std::vector<double> position_nees;     ///< the same frames, camera position alone (3 dof)
+  std::vector<double> orientation_nees;  ///< the same frames, camera orientation alone (3 dof)
+  /// NIS at the predicted state by the landmark's parametrization [inverse depth, XYZ, XYZ-R,
+  /// IDR] over the whole run (FrameReport::nis).
+  std::array<sylva::NisTally, 4> nis = FrameReport::emptyNisTallies();
   std::string failure;            ///< why an error could not be computed, if so
 };
 
@@ -68,9 +73,12 @@ std::pair<sylva::eval::Similarity3, double> alignMap(
     const std::vector<std::pair<Id, Vec<3>>>& estimated,
     const sylva::sim::ForestScenario& scenario);
 
-/// The camera pose NEES (sylva::cameraPoseNees), or infinity where the filter's pose
-/// covariance is not positive definite.
-double cameraPoseNees(const Vec<13>& estimate, const Mat<13, 13>& P, const Vec<13>& truth);
+/// The camera pose NEES (sylva::cameraPoseNees) and that of its position and orientation
+/// alone, each infinity where the filter's covariance of it is not positive definite.
+struct PoseNees {
+  double pose, position, orientation;
+};
+PoseNees cameraPoseNees(const Vec<13>& estimate, const Mat<13, 13>& P, const Vec<13>& truth);
 
 /// One run of `options` over `scenario` (at most `max_frames` frames, 0: all).
 RunResult runForestSlam(const sylva::sim::ForestScenario& scenario,

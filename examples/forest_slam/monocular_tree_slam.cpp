@@ -46,24 +46,42 @@ MonocularTreeSlam::MonocularTreeSlam(const TreeSlamOptions& options, const Vec<1
               .finished())),
       pixel_noise_(sylva::Gaussian<2>::sigmas(Vec<2>::Constant(options.pixel_sigma_px))),
       tree_noise_(sylva::Gaussian<3>::sigmas(Vec<3>(options.pixel_sigma_px, options.pixel_sigma_px, options.width_sigma_px))) {
+  ekf_.setLinearizationPoint(options.linearization);
   gate_.fill(std::numeric_limits<double>::infinity());
   if (options.gate_probability > 0.0)
     for (int dim = 1; dim <= 3; ++dim) gate_[dim] = sylva::chiSquareGate(dim, options.gate_probability);
 }
 
-FrameReport MonocularTreeSlam::processFrame(double dt, const std::vector<sylva::sim::TreeObservation>& observations) {
+FrameReport MonocularTreeSlam::processFrame(double dt,
+                                            const std::vector<sylva::sim::TreeObservation>& observations,
+                                            const FrameTruth* truth) {
+  const bool ideal = options_.linearization == sylva::LinearizationPoint::kIdeal;
+  if ((ideal || options_.unbiased_point_uv) && (truth == nullptr || truth->trees == nullptr))
+    sylva::fail(sylva::ErrorCode::kInvalidArgument,
+                "MonocularTreeSlam::processFrame: ideal linearization and unbiased point measurements are "
+                "diagnostics that need the frame's truth (FrameTruth with the trees)");
   FrameReport report;
   if (profile_ != nullptr) ++profile_->frames;
   {
     PhaseClock clock(profile_ != nullptr ? &profile_->predict_s : nullptr);
+    if (ideal) ekf_.setIdealRobot(truth->camera_before);
     ekf_.predict(Vec<0>(), dt, accel_noise_);
+    if (ideal) {
+      ekf_.setIdealRobot(truth->camera);
+      setIdealLandmarks(*truth);
+    }
   }
 
   fresh_.clear();
   mapped_.clear();
   for (const auto& o : observations) {
-    const Vec<3> z = o.z;
-    (ekf_.contains(o.id) ? mapped_ : fresh_).push_back({o.id, z});
+    Vec<2> uv = o.z.head<2>();
+    if (options_.unbiased_point_uv) {
+      // The frame's noise on the projection of the true base centre.
+      const Vec<3>& base = (*truth->trees)[static_cast<std::size_t>(o.id)].base;
+      uv += xyz_point_(truth->camera, base) - o.z_true.head<2>();
+    }
+    (ekf_.contains(o.id) ? mapped_ : fresh_).push_back({o.id, o.z, uv});
   }
   {
     // Gating is what fuseMapped spends beyond the updates, which fuse() books themselves.
@@ -100,13 +118,38 @@ FrameReport MonocularTreeSlam::processFrame(double dt, const std::vector<sylva::
       if (options_.pipeline == WidthPipeline::kFromFirstSight)
         ekf_.add(s.id, idr_init_, idr_init_.measurement(s.z), idr_init_.noise(tree_noise_));
       else
-        ekf_.add(s.id, init_, init_.measurement(s.z.head<2>()), init_.noise(pixel_noise_));
+        ekf_.add(s.id, init_, init_.measurement(s.uv), init_.noise(pixel_noise_));
       ++report.added;
+      if (ideal) true_anchor_[s.id] = truth->camera.head<3>();
     } catch (const sylva::Error&) {
       ++report.rejected;
     }
   }
+  if (ideal) setIdealLandmarks(*truth);  // for the landmarks added or converted above
   return report;
+}
+
+void MonocularTreeSlam::setIdealLandmarks(const FrameTruth& truth) {
+  for (const auto& slot : ekf_.slots()) {
+    const sylva::sim::Tree& tree = (*truth.trees)[static_cast<std::size_t>(slot.id)];
+    if (ekf_.holds<sylva::Point3>(slot.id)) {
+      ekf_.setIdealLandmark<sylva::Point3>(slot.id, tree.base);
+    } else if (ekf_.holds<sylva::TreeXYZR>(slot.id)) {
+      ekf_.setIdealLandmark<sylva::TreeXYZR>(slot.id, tree.xyzr());
+    } else {
+      // Inverse depth (and IDR) of the base centre from the true camera position at the first
+      // sight: the parametrization's true value.
+      const Vec<3> anchor = true_anchor_.at(slot.id);
+      const Vec<3> d = tree.base - anchor;
+      const double rho = 1.0 / d.norm();
+      Vec<7> l;
+      l << anchor, std::atan2(d.y(), d.x()), std::atan2(d.z(), d.head<2>().norm()), rho, tree.radius_m * rho;
+      if (ekf_.holds<sylva::InverseDepth>(slot.id))
+        ekf_.setIdealLandmark<sylva::InverseDepth>(slot.id, l.head<6>());
+      else
+        ekf_.setIdealLandmark<sylva::InverseDepthRadius>(slot.id, l);
+    }
+  }
 }
 
 std::array<int, 4> MonocularTreeSlam::countByType() const {
@@ -118,9 +161,9 @@ std::array<int, 4> MonocularTreeSlam::countByType() const {
 double MonocularTreeSlam::nisOf(const Filter& ekf, const Seen& s) const {
   try {
     if (ekf.template holds<sylva::InverseDepth>(s.id))
-      return ekf.innovation(id_point_, s.id, Vec<2>(s.z.head<2>()), pixel_noise_).nis();
+      return ekf.innovation(id_point_, s.id, s.uv, pixel_noise_).nis();
     if (ekf.template holds<sylva::Point3>(s.id))
-      return ekf.innovation(xyz_point_, s.id, Vec<2>(s.z.head<2>()), pixel_noise_).nis();
+      return ekf.innovation(xyz_point_, s.id, s.uv, pixel_noise_).nis();
     if (ekf.template holds<sylva::InverseDepthRadius>(s.id))
       return ekf.innovation(idr_width_, s.id, s.z, tree_noise_).nis();
     return ekf.innovation(tree_width_, s.id, s.z, tree_noise_).nis();
@@ -139,9 +182,9 @@ bool MonocularTreeSlam::withinGate(const Filter& ekf, Id id, double nis) const {
 
 void MonocularTreeSlam::fuseOne(Filter& ekf, const Seen& s) const {
   if (ekf.template holds<sylva::InverseDepth>(s.id))
-    ekf.update(id_point_, s.id, Vec<2>(s.z.head<2>()), pixel_noise_);
+    ekf.update(id_point_, s.id, s.uv, pixel_noise_);
   else if (ekf.template holds<sylva::Point3>(s.id))
-    ekf.update(xyz_point_, s.id, Vec<2>(s.z.head<2>()), pixel_noise_);
+    ekf.update(xyz_point_, s.id, s.uv, pixel_noise_);
   else if (ekf.template holds<sylva::InverseDepthRadius>(s.id))
     ekf.update(idr_width_, s.id, s.z, tree_noise_);
   else
@@ -152,8 +195,12 @@ void MonocularTreeSlam::fuseMapped(FrameReport& report) {
   candidates_.clear();
   for (const Seen& s : mapped_) {
     const double nis = nisOf(ekf_, s);
-    if (nis < kUnpredictable) candidates_.push_back({s, nis});
-    else ++report.rejected;
+    if (nis < kUnpredictable) {
+      candidates_.push_back({s, nis});
+      report.nis[static_cast<std::size_t>(ekf_.slot(s.id).type_index)].add(nis);
+    } else {
+      ++report.rejected;
+    }
   }
   if (candidates_.empty()) return;
   accepted_.clear();
@@ -213,9 +260,9 @@ void MonocularTreeSlam::fuseBatches(const std::vector<Seen>& observations, Frame
   idr_batch_.clear();
   for (const Seen& s : observations) {
     if (ekf_.template holds<sylva::InverseDepth>(s.id))
-      id_batch_.push_back({s.id, s.z.head<2>(), pixel_noise_});
+      id_batch_.push_back({s.id, s.uv, pixel_noise_});
     else if (ekf_.template holds<sylva::Point3>(s.id))
-      xyz_batch_.push_back({s.id, s.z.head<2>(), pixel_noise_});
+      xyz_batch_.push_back({s.id, s.uv, pixel_noise_});
     else if (ekf_.template holds<sylva::InverseDepthRadius>(s.id))
       idr_batch_.push_back({s.id, s.z, tree_noise_});
     else

@@ -47,10 +47,12 @@
 #include <cstddef>
 #include <cmath>
 #include <cstdint>
+#include <unordered_map>
 #include <vector>
 
 #include <sylva/core/error.hpp>
 #include <sylva/consistency/chi_square.hpp>
+#include <sylva/consistency/monte_carlo.hpp>
 #include <sylva/core/types.hpp>
 #include <sylva/filter/ekf.hpp>
 #include <sylva/filter/tree_life_cycle.hpp>
@@ -65,6 +67,7 @@
 #include <sylva/measurements/tree_width.hpp>
 #include <sylva/motion/constant_velocity_3d.hpp>
 #include <sylva/noise/gaussian.hpp>
+#include <sylva/sim/tree_forest.hpp>
 #include <sylva/sim/tree_observer.hpp>
 
 namespace forest_slam {
@@ -116,6 +119,21 @@ struct TreeSlamOptions {
   double linearity_threshold = 0.1;    ///< inverse depth -> XYZ, IDR -> XYZ-R (Civera et al. 2007)
   double tree_position_sigma_m = 0.3;  ///< XYZ -> XYZ-R once the position's largest sigma is below
   double gate_probability = 0.99999;   ///< chi-square gate on each observation's NIS (0: off)
+  /// Where the filter takes its Jacobians. kIdeal (a diagnostic) needs the truth of every frame
+  /// (`FrameTruth`).
+  sylva::LinearizationPoint linearization = sylva::LinearizationPoint::kCurrentEstimate;
+  /// A diagnostic: the (u, v) fused by the point models is the projection of the true base
+  /// centre plus the frame's noise, instead of the centre of the base ellipse (which the
+  /// point models do not predict: their model error). Needs `FrameTruth`.
+  bool unbiased_point_uv = false;
+};
+
+/// What the simulator knows about one frame, for the diagnostics of `TreeSlamOptions`
+/// (ideal linearization, bias-free point measurements). The filter never sees it otherwise.
+struct FrameTruth {
+  Vec<13> camera_before;                         ///< true camera state at the previous frame
+  Vec<13> camera;                                ///< true camera state at this frame
+  const std::vector<sylva::sim::Tree>* trees = nullptr;  ///< the forest, trees[id].id == id
 };
 
 /// What one frame did.
@@ -126,6 +144,14 @@ struct FrameReport {
   int to_tree = 0;    ///< XYZ -> XYZ-R or IDR -> XYZ-R conversions
   int rejected = 0;   ///< observations or conversions refused by the filter, a model or the gate
   int hypotheses = 0; ///< 1 when the frame was re-anchored on a one-point hypothesis
+  /// NIS of the observations of mapped trees at the predicted state (before any is fused), by
+  /// the landmark's parametrization [inverse depth, XYZ, XYZ-R, IDR] (2 dof for the point
+  /// models, 3 for the width models; unpredictable observations left out).
+  std::array<sylva::NisTally, 4> nis = emptyNisTallies();
+
+  static std::array<sylva::NisTally, 4> emptyNisTallies() {
+    return {sylva::NisTally(2), sylva::NisTally(2), sylva::NisTally(3), sylva::NisTally(3)};
+  }
 };
 
 /// Where the frames' time went, when profiling is on (`MonocularTreeSlam::setProfile`):
@@ -157,7 +183,10 @@ class MonocularTreeSlam {
   const TreeSlamOptions& options() const { return options_; }
 
   /// One frame: predict over `dt` seconds, then the trees seen ([u, v, w] pixels each).
-  FrameReport processFrame(double dt, const std::vector<sylva::sim::TreeObservation>& observations);
+  /// `truth` is needed by the diagnostic options only (kInvalidArgument without it).
+  FrameReport processFrame(double dt,
+                           const std::vector<sylva::sim::TreeObservation>& observations,
+                           const FrameTruth* truth = nullptr);
 
   /// Number of landmarks per parametrization: [inverse depth, XYZ, XYZ-R, IDR].
   std::array<int, 4> countByType() const;
@@ -169,7 +198,8 @@ class MonocularTreeSlam {
  private:
   struct Seen {
     Id id;
-    Vec<3> z;
+    Vec<3> z;   ///< [u, v, w] for the width models
+    Vec<2> uv;  ///< [u, v] for the point models (z's unless `unbiased_point_uv`)
   };
   struct Candidate {
     Seen seen;
@@ -197,7 +227,14 @@ class MonocularTreeSlam {
   template <typename Model>
   void fuse(const Model& model, const std::vector<sylva::Observation<Model>>& batch, FrameReport& report);
 
+  /// Hands the true state of every landmark, in its parametrization, to the filter
+  /// (LinearizationPoint::kIdeal).
+  void setIdealLandmarks(const FrameTruth& truth);
+
   TreeSlamOptions options_;
+  /// The true camera position when each tree was first seen: the true anchor of its inverse
+  /// depth (kIdeal only).
+  std::unordered_map<Id, Vec<3>> true_anchor_;
   Filter ekf_;
   IdPoint id_point_;
   XyzPoint xyz_point_;

@@ -31,7 +31,7 @@
 
 #include "report.hpp"
 #include "results_md.hpp"
-#include "run_pool.hpp"
+#include "../common/run_pool.hpp"
 #include "study.hpp"
 
 #ifndef SYLVA_SOURCE_DIR
@@ -270,13 +270,13 @@ int main(int argc, char** argv) {
               << shard.k << "/" << shard.n << ") on " << threads << " threads\n";
     const auto start = std::chrono::steady_clock::now();
     const std::vector<nlohmann::json> lines =
-        runAll<nlohmann::json>(static_cast<int>(mine.size()), threads, [&](int i) {
+        sylva_examples::runAll<nlohmann::json>(static_cast<int>(mine.size()), threads, [&](int i) {
           return runJob(mine[i], seed, nees_every, max_frames);
         });
     writeLines(lines, out_path);
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    std::cerr << "tree_width_study: " << lines.size() << " runs in " << formatDuration(seconds)
+    std::cerr << "tree_width_study: " << lines.size() << " runs in " << sylva_examples::formatDuration(seconds)
               << ", written to " << out_path << "\n";
     if (!no_report && shard.n == 1 && limit == 0 && max_frames == 0) {
       // The documented way to rerun it (scripts/run_study.sh builds and runs this program).

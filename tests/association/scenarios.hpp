@@ -3,6 +3,7 @@
 // initialized from a noise-free measurement taken at the true initial pose, so the mapped
 // means are the true positions and every measurement below is derived, not drawn.
 
+#include "filter_snapshot.hpp"
 #include "sylva_catch.hpp"
 
 #include <string>
@@ -83,39 +84,6 @@ inline Scenario treeRowScenario(double slip_m) {
       sylva::Vec<2>(1.0, 0.0), dt_s, sylva::Gaussian<2>::sigmas(sylva::Vec<2>(0.5, 1e-3)));
   s.true_pose = sylva::Vec<3>(0.0, 1.0 - slip_m, sylva::kPi / 2.0);
   return s;
-}
-
-/// The filter's mean and covariance, compared bit for bit.
-struct Snapshot {
-  Eigen::VectorXd mean;
-  Eigen::MatrixXd covariance;
-  template <typename F>
-  explicit Snapshot(const F& ekf) : mean(ekf.mean()), covariance(ekf.covariance()) {}
-  bool operator==(const Snapshot& o) const {
-    return mean.size() == o.mean.size() && (mean.array() == o.mean.array()).all() &&
-           (covariance.array() == o.covariance.array()).all();
-  }
-};
-
-/// Requires `operation` to throw sylva::Error with `code` and a message containing
-/// `fragment`, and the filter to be unchanged.
-template <typename F, typename Operation>
-void requireRejected(const F& ekf,
-                     sylva::ErrorCode code,
-                     const std::string& fragment,
-                     Operation&& operation) {
-  const Snapshot before(ekf);
-  bool thrown = false;
-  try {
-    operation();
-  } catch (const sylva::Error& e) {
-    thrown = true;
-    INFO("message: " << e.what());
-    CHECK(e.code() == code);
-    CHECK(std::string(e.what()).find(fragment) != std::string::npos);
-  }
-  CHECK(thrown);
-  CHECK(Snapshot(ekf) == before);
 }
 
 inline Pairing ids(std::initializer_list<std::optional<sylva::Id>> list) { return Pairing(list); }

@@ -154,3 +154,100 @@ TEST_CASE("camera pose NEES is chi-square(6) for errors drawn from the covarianc
   zero_q.segment<4>(3).setZero();
   CHECK_THROWS_WITH(cameraPoseNees(zero_q, P, truth), Contains("zero norm"));
 }
+
+namespace {
+/// chi-square(dof) samples: sums of squared standard normals.
+double chiSquareSample(int dof, std::mt19937_64& rng) {
+  std::normal_distribution<double> normal;
+  double sum = 0.0;
+  for (int i = 0; i < dof; ++i) {
+    const double x = normal(rng);
+    sum += x * x;
+  }
+  return sum;
+}
+}  // namespace
+
+TEST_CASE("NeesEnsemble: a consistent ensemble sits inside its bounds, step by step and run by run", "[consistency]") {
+  // 40 ensembles of 50 runs x 60 steps of independent chi2(3) samples: at each step the
+  // ensemble average lies inside its 95% bounds with probability 0.95, so the share of steps
+  // inside averages 0.95 over the ensembles.
+  std::mt19937_64 rng(2024);
+  double fraction_sum = 0.0, mean_sum = 0.0;
+  const int ensembles = 40;
+  for (int e = 0; e < ensembles; ++e) {
+    NeesEnsemble ensemble(3);
+    for (int run = 0; run < 50; ++run)
+      for (int step = 0; step < 60; ++step) ensemble.add(run, step, chiSquareSample(3, rng));
+    const auto s = ensemble.summary();
+    CHECK(s.runs == 50);
+    CHECK(s.dof == 3);
+    const auto [lo, hi] = averageChiSquareBounds(3, 50);
+    CHECK(s.lower == lo);
+    CHECK(s.upper == hi);
+    fraction_sum += s.fraction_inside;
+    mean_sum += s.mean;
+    // The median of 50 run averages of 60 chi2(3) samples: each has sd sqrt(6 / 60) = 0.32.
+    CHECK(std::abs(s.median_run - 3.0) < 0.5);
+  }
+  CHECK(fraction_sum / ensembles == Approx(0.95).margin(0.015));
+  CHECK(mean_sum / ensembles == Approx(3.0).margin(0.03));
+}
+
+TEST_CASE("NeesEnsemble: a diverged run counts as infinite, and the median tolerates it", "[consistency]") {
+  NeesEnsemble ensemble(2);
+  for (int run = 0; run < 5; ++run)
+    for (int step = 0; step < 4; ++step) ensemble.add(run, step, run == 4 && step >= 2 ? INFINITY : 1.0 + run);
+  const auto s = ensemble.summary();
+  CHECK(std::isinf(s.mean));
+  CHECK(s.median_run == Approx(3.0));  // run averages 1, 2, 3, 4, inf
+  CHECK(s.fraction_inside <= 0.5);     // the last two steps are infinite
+  const auto runs = ensemble.runAverages();
+  REQUIRE(runs.size() == 5);
+  CHECK(std::isinf(runs[4]));
+  // Runs of different lengths: each step is averaged over the runs that recorded it.
+  NeesEnsemble ragged(1);
+  ragged.add(0, 0, 1.0);
+  ragged.add(0, 1, 3.0);
+  ragged.add(1, 0, 2.0);
+  std::vector<int> counts;
+  const auto averages = ragged.stepAverages(&counts);
+  CHECK(averages[0] == Approx(1.5));
+  CHECK(averages[1] == Approx(3.0));
+  CHECK(counts == std::vector<int>{2, 1});
+  CHECK(ragged.summary().median_run == Approx(2.0));  // run averages 2 and 2
+}
+
+TEST_CASE("NeesEnsemble and NisTally refuse what is not a NEES or NIS", "[consistency]") {
+  CHECK_THROWS_WITH(NeesEnsemble(0), Contains("dof must be > 0"));
+  NeesEnsemble ensemble(3);
+  CHECK_THROWS_WITH(ensemble.summary(), Contains("no samples"));
+  CHECK_THROWS_WITH(ensemble.add(0, 0, NAN), Contains("NaN or negative"));
+  CHECK_THROWS_WITH(ensemble.add(0, 0, -1.0), Contains("NaN or negative"));
+  CHECK_THROWS_WITH(ensemble.add(-1, 0, 1.0), Contains("negative run or step"));
+  ensemble.add(0, 0, 1.0);
+  CHECK_THROWS_WITH(ensemble.add(0, 0, 2.0), Contains("already has a value at step 0"));
+  CHECK_THROWS_WITH(NisTally(0), Contains("dof must be > 0"));
+  NisTally tally(2);
+  CHECK_THROWS_WITH(tally.bounds(), Contains("no samples"));
+  CHECK_THROWS_WITH(tally.add(INFINITY), Contains("not a NIS"));
+  CHECK_THROWS_WITH(tally.add(-0.5), Contains("not a NIS"));
+  CHECK_THROWS_WITH(tally.merge(NisTally(3)), Contains("differ"));
+  CHECK(tally.count() == 0);
+}
+
+TEST_CASE("NisTally: chi-square samples have the mean and the exceedance rate they should", "[consistency]") {
+  std::mt19937_64 rng(7);
+  NisTally first(2), second(2);
+  for (int i = 0; i < 20000; ++i) (i % 2 ? first : second).add(chiSquareSample(2, rng));
+  first.merge(second);
+  CHECK(first.count() == 20000);
+  const auto [lo, hi] = first.bounds();
+  CHECK(lo < 2.0);
+  CHECK(hi > 2.0);
+  // 20000 samples: the mean has sd 2 / sqrt(20000) = 0.014, the share above the 95% gate
+  // sd sqrt(0.05 * 0.95 / 20000) = 0.0015.
+  CHECK(first.mean() == Approx(2.0).margin(0.06));
+  CHECK(first.fractionAbove() == Approx(0.05).margin(0.006));
+  CHECK(first.gateProbability() == 0.95);
+}

@@ -6,6 +6,7 @@
 #include <sylva/sylva.hpp>
 
 #include "filter/test_models.hpp"
+#include "filter_snapshot.hpp"
 #include "sylva_catch.hpp"
 
 // Own namespace: the tests of a folder are compiled as one unity translation unit.
@@ -22,39 +23,8 @@ using Filter = Ekf<Unicycle2D, Point2, InverseDistance2>;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-struct Snapshot {
-  Eigen::VectorXd mean;
-  Eigen::MatrixXd covariance;
-  std::vector<LandmarkSlot> slots;
-  template <typename F>
-  explicit Snapshot(const F& ekf) : mean(ekf.mean()), covariance(ekf.covariance()), slots(ekf.slots()) {}
-  bool operator==(const Snapshot& o) const {
-    if (mean.size() != o.mean.size() || slots.size() != o.slots.size()) return false;
-    for (std::size_t i = 0; i < slots.size(); ++i)
-      if (slots[i].id != o.slots[i].id || slots[i].offset != o.slots[i].offset ||
-          slots[i].type_index != o.slots[i].type_index)
-        return false;
-    return (mean.array() == o.mean.array()).all() && (covariance.array() == o.covariance.array()).all();
-  }
-};
-
-/// Runs `operation`, requires it to throw sylva::Error with `code` and a message containing
-/// `fragment`, and requires the filter to be unchanged.
-template <typename F, typename Operation>
-void requireRejected(F& ekf, ErrorCode code, const std::string& fragment, Operation&& operation) {
-  const Snapshot before(ekf);
-  bool thrown = false;
-  try {
-    operation();
-  } catch (const Error& e) {
-    thrown = true;
-    INFO("message: " << e.what());
-    CHECK(e.code() == code);
-    CHECK(std::string(e.what()).find(fragment) != std::string::npos);
-  }
-  CHECK(thrown);
-  CHECK(Snapshot(ekf) == before);
-}
+using sylva_test::requireRejected;
+using sylva_test::Snapshot;
 
 Filter makeFilter() {
   Filter ekf(Vec<3>(1.0, 2.0, 0.3), Mat<3, 3>(Vec<3>(0.01, 0.02, 0.003).asDiagonal()));

@@ -24,9 +24,15 @@
 
 namespace sylva {
 
-inline double cameraPoseNees(const Vec<13>& estimate,
-                             const Mat<13, 13>& covariance,
-                             const Vec<13>& truth) {
+/// The camera pose's error e (6: position, then orientation) and its covariance G P G^T, as
+/// described above; `cameraPoseNees` is e^T (G P G^T)^-1 e, and a sub-block of both gives the
+/// NEES of the position or the orientation alone (3 dof each).
+struct CameraPoseError {
+  Vec<6> e;
+  Mat<6, 6> S;
+};
+
+inline CameraPoseError cameraPoseError(const Vec<13>& estimate, const Mat<13, 13>& covariance, const Vec<13>& truth) {
   if (!estimate.allFinite() || !truth.allFinite())
     fail(ErrorCode::kNonFinite, "cameraPoseNees: the estimate or the true state is not finite");
   const auto conj = [](const Vec<4>& q) { return Vec<4>(q[0], -q[1], -q[2], -q[3]); };
@@ -38,16 +44,23 @@ inline double cameraPoseNees(const Vec<13>& estimate,
   Vec<4> q_true = truth.segment<4>(3) / true_norm;
   if (quaternionProduct<double>(conj(q), q_true)[0] < 0.0)
     q_true = -q_true;  // same rotation, the short way
-  Vec<6> e;
-  e.head<3>() = truth.head<3>() - estimate.head<3>();
-  e.tail<3>() = 2.0 * quaternionProduct<double>(conj(q), q_true).tail<3>();
+  CameraPoseError out;
+  out.e.head<3>() = truth.head<3>() - estimate.head<3>();
+  out.e.tail<3>() = 2.0 * quaternionProduct<double>(conj(q), q_true).tail<3>();
   Mat<6, 7> G = Mat<6, 7>::Zero();
   G.topLeftCorner<3, 3>() = -Mat<3, 3>::Identity();
   for (int i = 0; i < 4; ++i)
     G.block<3, 1>(3, 3 + i) =
         2.0 * quaternionProduct<double>(conj(Vec<4>::Unit(i)), q_true).tail<3>();
-  const Mat<6, 6> S = G * covariance.topLeftCorner<7, 7>() * G.transpose();
-  return nees(e, S);
+  out.S = G * covariance.topLeftCorner<7, 7>() * G.transpose();
+  return out;
+}
+
+inline double cameraPoseNees(const Vec<13>& estimate,
+                             const Mat<13, 13>& covariance,
+                             const Vec<13>& truth) {
+  const CameraPoseError pose = cameraPoseError(estimate, covariance, truth);
+  return nees(pose.e, pose.S);
 }
 
 }  // namespace sylva

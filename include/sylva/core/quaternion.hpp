@@ -53,4 +53,23 @@ Mat<3, 3, T> rotationMatrix(const Vec<4, T>& q) {
   return R;
 }
 
+/// R_right(b), the matrix of right multiplication: a (x) b = R_right(b) a.
+inline Mat<4, 4> quaternionRightMatrix(const Vec<4>& b) {
+  Mat<4, 4> R;
+  R << b[0], -b[1], -b[2], -b[3],  //
+      b[1], b[0], b[3], -b[2],     //
+      b[2], -b[3], b[0], b[1],     //
+      b[3], b[2], -b[1], b[0];
+  return R;
+}
+
+/// [a]x, the matrix of the cross product: skewSymmetric(a) b = a x b.
+inline Mat<3, 3> skewSymmetric(const Vec<3>& a) {
+  Mat<3, 3> S;
+  S << 0.0, -a[2], a[1],  //
+      a[2], 0.0, -a[0],   //
+      -a[1], a[0], 0.0;
+  return S;
+}
+
 }  // namespace sylva

@@ -68,14 +68,40 @@ struct HasNormalizationJacobian<
     std::void_t<decltype(Robot::normalizationJacobian(std::declval<const Vec<Robot::kDim>&>()))>>
     : std::true_type {};
 
+/// A robot may provide the transition Jacobian of first-estimates linearization as
+/// `static firstEstimatesJacobian(from, to)` (every Pose2D robot) or, when it depends on the
+/// step length, `static firstEstimatesJacobian(from, to, dt)` (ConstantVelocity3D).
 template <typename Robot, typename = void>
-struct HasFirstEstimatesJacobian : std::false_type {};
+struct HasTwoPointFirstEstimatesJacobian : std::false_type {};
 template <typename Robot>
-struct HasFirstEstimatesJacobian<
+struct HasTwoPointFirstEstimatesJacobian<
     Robot,
     std::void_t<decltype(Robot::firstEstimatesJacobian(std::declval<const Vec<Robot::kDim>&>(),
                                                        std::declval<const Vec<Robot::kDim>&>()))>>
     : std::true_type {};
+template <typename Robot, typename = void>
+struct HasTimedFirstEstimatesJacobian : std::false_type {};
+template <typename Robot>
+struct HasTimedFirstEstimatesJacobian<
+    Robot,
+    std::void_t<decltype(Robot::firstEstimatesJacobian(std::declval<const Vec<Robot::kDim>&>(),
+                                                       std::declval<const Vec<Robot::kDim>&>(), 0.0))>>
+    : std::true_type {};
+template <typename Robot>
+struct HasFirstEstimatesJacobian
+    : std::bool_constant<HasTwoPointFirstEstimatesJacobian<Robot>::value || HasTimedFirstEstimatesJacobian<Robot>::value> {};
+
+/// The first-estimates transition Jacobian from the prediction `from` = x_{k|k-1} to the new
+/// prediction `to` = x_{k+1|k} over `dt` seconds, through whichever form the robot has.
+template <typename Robot>
+Mat<Robot::kDim, Robot::kDim> firstEstimatesJacobian(const Vec<Robot::kDim>& from, const Vec<Robot::kDim>& to, double dt) {
+  if constexpr (HasTimedFirstEstimatesJacobian<Robot>::value) {
+    return Robot::firstEstimatesJacobian(from, to, dt);
+  } else {
+    (void)dt;
+    return Robot::firstEstimatesJacobian(from, to);
+  }
+}
 
 /// z_hat = h(robot, landmark) and, when requested, its two Jacobians.
 template <typename Model>
@@ -98,6 +124,24 @@ Vec<Model::kDim> residual(const Model& model, const Vec<Model::kDim>& z, const V
     return model.residual(z, z_hat);
   } else {
     return z - z_hat;
+  }
+}
+
+template <typename Param, typename = void>
+struct HasDifference : std::false_type {};
+template <typename Param>
+struct HasDifference<Param,
+                     std::void_t<decltype(Param::difference(std::declval<const Vec<Param::kDim>&>(),
+                                                            std::declval<const Vec<Param::kDim>&>()))>>
+    : std::true_type {};
+
+/// a - b through the type's own `difference` (angles wrapped) when it has one.
+template <typename Param>
+Vec<Param::kDim> difference(const Vec<Param::kDim>& a, const Vec<Param::kDim>& b) {
+  if constexpr (HasDifference<Param>::value) {
+    return Param::difference(a, b);
+  } else {
+    return a - b;
   }
 }
 

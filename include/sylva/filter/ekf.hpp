@@ -28,6 +28,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iterator>
+#include <limits>
 #include <sstream>
 #include <string>
 #include <type_traits>
@@ -64,8 +65,21 @@ enum class LinearizationPoint {
   /// transition Jacobian at the latest two predictions. The linearized system then keeps the
   /// unobservable global pose unobservable, so heading confidence cannot come from
   /// linearization alone (the textbook EKF's known overconfidence). Needs a robot with
-  /// `firstEstimatesJacobian(from, to)` (every `Pose2D` robot has it).
+  /// `firstEstimatesJacobian(from, to)` (every `Pose2D` robot) or
+  /// `firstEstimatesJacobian(from, to, dt)` (ConstantVelocity3D).
   kFirstEstimates,
+  /// A diagnostic for simulations: predict and update linearized about the TRUE state, which
+  /// the caller hands over (`setIdealRobot` before each predict and after it,
+  /// `setIdealLandmark` for each landmark it updates). Jacobians are taken there, and so are
+  /// the predictions, to first order: f(x_true) + F (x - x_true) and h(x_true) + H (x - x_true).
+  /// The filter is then the Kalman filter of the system linearized along the true trajectory,
+  /// free of linearization error however far the estimate strays; what inconsistency is left
+  /// comes from the models (noise, measurement model error, gating). Taking only the Jacobians
+  /// at the truth and the predictions at the estimate would not do: once the estimate strays
+  /// along a weakly observable direction (monocular scale), the two stop agreeing and the
+  /// filter diverges for that reason alone. add and reparametrize still use the estimate.
+  /// Linearizing at a state that was not handed over is refused (kInvalidArgument).
+  kIdeal,
 };
 
 /// How `update(model, observations, fusion)` fuses a range of observations.
@@ -196,11 +210,33 @@ class BasicEkf {
       if (point == LinearizationPoint::kFirstEstimates)
         fail(ErrorCode::kInvalidArgument,
              "Ekf::setLinearizationPoint: first-estimates Jacobians need a robot with a static "
-             "firstEstimatesJacobian(from, to), and the filter's robot type has none");
+             "firstEstimatesJacobian(from, to) or firstEstimatesJacobian(from, to, dt), and the "
+             "filter's robot type has none");
     }
     linearization_ = point;
   }
   LinearizationPoint linearizationPoint() const { return linearization_; }
+
+  /// The robot's true state, for LinearizationPoint::kIdeal: predict linearizes the motion
+  /// about it, and updates the measurement models. Each predict uses it up, so hand
+  /// over the true state before a predict (the state it starts from) and after it (the state
+  /// the updates see). Non-finite input is refused (kNonFinite); the filter is unchanged.
+  void setIdealRobot(const RobotState& x_true) {
+    if (!x_true.allFinite()) fail(ErrorCode::kNonFinite, "Ekf::setIdealRobot: the true robot state is not finite");
+    ideal_.template head<kRobotDim>() = x_true;
+  }
+
+  /// The true state of landmark `id` in its parametrization `Landmark`, for kIdeal. Kept until
+  /// the landmark leaves the state or changes parametrization (the true state of the new
+  /// parametrization must then be handed over again). Throws kUnknownId, kWrongLandmarkType or
+  /// kNonFinite, and the filter is unchanged.
+  template <typename Landmark>
+  void setIdealLandmark(Id id, const Vec<Landmark::kDim>& l_true) {
+    const LandmarkSlot& s = typedSlot<Landmark>(id, "Ekf::setIdealLandmark");
+    if (!l_true.allFinite())
+      fail(ErrorCode::kNonFinite, "Ekf::setIdealLandmark: the true state of landmark " + std::to_string(id) + " is not finite");
+    ideal_.template segment<Landmark::kDim>(s.offset) = l_true;
+  }
 
   // ---------------------------------------------------------------- access
 
@@ -275,11 +311,17 @@ class BasicEkf {
     if (!u.allFinite()) fail(ErrorCode::kNonFinite, "Ekf::predict: control is not finite");
     Mat<kRobotDim, kRobotDim> F;
     Mat<kRobotDim, kNoiseDim> G;
-    const RobotState next = robot_(robotMean(), u, dt, F, G);
+    RobotState next = robot_(robotMean(), u, dt, F, G);
+    if (linearization_ == LinearizationPoint::kIdeal) {
+      // The motion linearized about the true state: f(x_true) + F (x - x_true).
+      const RobotState truth = idealRobot("Ekf::predict");
+      next = robot_(truth, u, dt, F, G) + F * detail::difference<Robot>(robotMean(), truth);
+      detail::normalize<Robot>(next);
+    }
     if constexpr (detail::HasFirstEstimatesJacobian<Robot>::value) {
       // FEJ: the transition Jacobian between the previous prediction and this one.
       if (linearization_ == LinearizationPoint::kFirstEstimates && next.allFinite())
-        F = Robot::firstEstimatesJacobian(RobotState(first_.template head<kRobotDim>()), next);
+        F = detail::firstEstimatesJacobian<Robot>(RobotState(first_.template head<kRobotDim>()), next, dt);
     }
     if (!next.allFinite() || !F.allFinite() || !G.allFinite())
       fail(ErrorCode::kNonFinite, "Ekf::predict: motion model produced a non-finite state or Jacobian");
@@ -288,6 +330,7 @@ class BasicEkf {
     // From here on nothing can fail.
     mean_.template head<kRobotDim>() = next;
     first_.template head<kRobotDim>() = next;
+    ideal_.template head<kRobotDim>().setConstant(std::numeric_limits<double>::quiet_NaN());
     transformRobotBlock(F, GQGt);  // eq. 2.27
   }
 
@@ -428,6 +471,17 @@ class BasicEkf {
       lin.z_hat = detail::evaluate(model, robotMean(), landmark, {}, {});
       detail::evaluate(model, RobotState(first_.template head<kRobotDim>()),
                        Vec<L>(first_.template segment<L>(s.offset)), lin.J_z_x, lin.J_z_l);
+    } else if (linearization_ == LinearizationPoint::kIdeal) {
+      const Vec<L> ideal_landmark = ideal_.template segment<L>(s.offset);
+      if (!ideal_landmark.allFinite())
+        fail(ErrorCode::kInvalidArgument,
+             std::string(Model::kName) + ": ideal linearization needs the true state of landmark " +
+                 std::to_string(id) + " (setIdealLandmark), and none was handed over since it entered the state");
+      const RobotState ideal_robot = idealRobot(Model::kName);
+      // The first-order prediction about the truth: the filter of the linearized system.
+      lin.z_hat = detail::evaluate(model, ideal_robot, ideal_landmark, lin.J_z_x, lin.J_z_l) +
+                  lin.J_z_x * detail::difference<Robot>(robotMean(), ideal_robot) +
+                  lin.J_z_l * detail::difference<typename Model::Landmark>(landmark, ideal_landmark);
     } else {
       lin.z_hat = detail::evaluate(model, robotMean(), landmark, lin.J_z_x, lin.J_z_l);
     }
@@ -507,6 +561,7 @@ class BasicEkf {
     mean_.template segment<L>(off) = l;
     detail::normalize<Landmark>(mean_.template segment<L>(off));
     first_.template segment<L>(off) = mean_.template segment<L>(off);
+    ideal_.template segment<L>(off).setConstant(std::numeric_limits<double>::quiet_NaN());
     // New rows (lower storage): [J_l_x P_rr, J_l_x P_rm]    (eq. 2.39, bottom row)
     cov_.template block<L, kRobotDim>(off, 0).noalias() = J_l_x * P_rr;
     const int m = n_ - kRobotDim;
@@ -650,6 +705,16 @@ class BasicEkf {
     return s;
   }
 
+  /// The true robot state handed over for kIdeal (kInvalidArgument naming `who` if none is).
+  RobotState idealRobot(const char* who) const {
+    const RobotState x = ideal_.template head<kRobotDim>();
+    if (!x.allFinite())
+      fail(ErrorCode::kInvalidArgument,
+           std::string(who) + ": ideal linearization needs the robot's true state (setIdealRobot), and none was "
+                              "handed over since the last predict");
+    return x;
+  }
+
   // ---------------------------------------------------------------- reparametrization
 
   /// Replaces slot `s` (type From) by a block of type To with mean `new_mean`, carrying the
@@ -700,6 +765,7 @@ class BasicEkf {
     mean_.template segment<Lt>(off) = new_mean;
     detail::normalize<To>(mean_.template segment<Lt>(off));
     first_.template segment<Lt>(off) = mean_.template segment<Lt>(off);  // a new first estimate
+    ideal_.template segment<Lt>(off).setConstant(std::numeric_limits<double>::quiet_NaN());
     cov_.block(off, 0, Lt, rest) = cross;
     cov_.template block<Lt, Lt>(off, off) = P_new;
     n_ += Lt;
@@ -731,13 +797,16 @@ class BasicEkf {
     const int capacity = std::max(needed, 2 * capacity_);
     Eigen::VectorXd mean = Eigen::VectorXd::Zero(capacity);
     Eigen::VectorXd first = Eigen::VectorXd::Zero(capacity);
+    Eigen::VectorXd ideal = Eigen::VectorXd::Constant(capacity, std::numeric_limits<double>::quiet_NaN());
     Eigen::MatrixXd cov = Eigen::MatrixXd::Zero(capacity, capacity);
     mean.head(n_) = mean_.head(n_);
     first.head(n_) = first_.head(n_);
+    ideal.head(n_) = ideal_.head(n_);
     cov.topLeftCorner(n_, n_).template triangularView<Eigen::Lower>() =
         cov_.topLeftCorner(n_, n_);
     mean_.swap(mean);
     first_.swap(first);
+    ideal_.swap(ideal);
     cov_.swap(cov);
     capacity_ = capacity;
   }
@@ -748,6 +817,7 @@ class BasicEkf {
     if (tail > 0) {
       mean_.segment(off, tail) = mean_.segment(off + d, tail).eval();
       first_.segment(off, tail) = first_.segment(off + d, tail).eval();
+      ideal_.segment(off, tail) = ideal_.segment(off + d, tail).eval();
       // Columns left of the block: move their lower rows up by d.
       for (int j = 0; j < off; ++j) {
         double* col = cov_.col(j).data();
@@ -954,6 +1024,9 @@ class BasicEkf {
   /// Linearization points for kFirstEstimates, laid out as mean_: the robot's latest
   /// prediction, then each landmark's estimate when it entered the state.
   Eigen::VectorXd first_;
+  /// Linearization points for kIdeal, laid out as mean_: the true states the caller handed
+  /// over, NaN where none is (a new landmark, the robot after each predict).
+  Eigen::VectorXd ideal_;
   LinearizationPoint linearization_ = LinearizationPoint::kCurrentEstimate;
   Eigen::MatrixXd cov_;  // lower triangle of the top-left n_ x n_ corner is authoritative
   std::vector<LandmarkSlot> slots_;

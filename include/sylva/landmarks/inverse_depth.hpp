@@ -50,6 +50,13 @@ struct InverseDepth {
   }
 
   static void normalize(Eigen::Ref<Vec<6>> l) { l[3] = wrapAngle(l[3]); }
+
+  /// a - b with the azimuth difference wrapped to (-pi, pi].
+  static Vec<6> difference(const Vec<6>& a, const Vec<6>& b) {
+    Vec<6> d = a - b;
+    d[3] = wrapAngle(d[3]);
+    return d;
+  }
 };
 
 /// InverseDepth -> Point3 (independent of the robot): p = anchor + m(theta, phi) / rho.

@@ -49,6 +49,13 @@ struct InverseDepthRadius {
   /// Wraps the azimuth theta to (-pi, pi].
   static void normalize(Eigen::Ref<Vec<7>> l) { l[3] = wrapAngle(l[3]); }
 
+  /// a - b with the azimuth difference wrapped to (-pi, pi].
+  static Vec<7> difference(const Vec<7>& a, const Vec<7>& b) {
+    Vec<7> d = a - b;
+    d[3] = wrapAngle(d[3]);
+    return d;
+  }
+
   /// nullptr for kappa > 0, else the reason (see detail::HasDomain).
   static const char* domainViolation(const Vec<7>& l) {
     return l[6] > 0.0 ? nullptr

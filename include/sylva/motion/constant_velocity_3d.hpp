@@ -107,6 +107,51 @@ struct ConstantVelocity3D {
     return N;
   }
 
+  /// The transition Jacobian of first-estimates linearization (after Huang, Mourikis and
+  /// Roumeliotis 2010, who give the planar case; the velocity rows follow Li and Mourikis 2013,
+  /// "High-precision, consistent EKF-based visual-inertial odometry", IJRR 32(6), eq. 49-51),
+  /// from the prediction `from` = x_{k|k-1} to the new prediction `to` = x_{k+1|k}.
+  ///
+  /// Monocular SLAM cannot observe seven directions of its state: where the map is (3), how it
+  /// is turned (3) and its scale (1). In this state they are, for a translation tau, a small
+  /// world-frame rotation phi and a scale change s,
+  ///   dr = tau + phi x r + s r,   dq = 1/2 (0, phi) (x) q,   dv = phi x v + s v,   domega = 0.
+  /// The textbook Jacobian at the posterior x_{k|k} carries them from the posterior to the new
+  /// prediction; the measurement Jacobians of first-estimates linearization make them
+  /// unobservable at the prediction x_{k|k-1} instead, and the two differ by the update, so
+  /// the linearized system would "observe" them. This Jacobian carries each of the seven
+  /// directions at `from` exactly into the same direction at `to`:
+  ///   dr'/dr = I,   dr'/dv = dt I + d v^T / |v|^2,   dr'/dq = -[d]x E(q),
+  ///   dq'/dq = R_right(q^* (x) q'),   dq'/domega as the textbook Jacobian at `from`,
+  ///   dv'/dv = I + Dv v^T / |v|^2,   dv'/dq = -[Dv]x E(q),   domega'/domega = I,
+  /// with q, v, r of `from`, q' of `to`, d = r' - r - v dt and Dv = v' - v the parts of the
+  /// step the update added, and E(q) dq = 2 vec(dq (x) q^*) the world-frame rotation of a
+  /// quaternion change. (The scale terms need |v| > 0; for a camera at rest they are left out.)
+  /// Without an update in between (from = x_{k|k}), d = Dv = 0 and it is the textbook
+  /// Jacobian on the quaternion's tangent space.
+  static Mat<13, 13> firstEstimatesJacobian(const State& from, const State& to, double dt) {
+    Mat<13, 13> F;
+    ConstantVelocity3D()(from, Control(), dt, F);  // dq'/domega and the constant blocks
+    const Vec<4> q = from.segment<4>(3).normalized();
+    const Vec<4> q_to = to.segment<4>(3).normalized();
+    const Vec<4> q_conj(q[0], -q[1], -q[2], -q[3]);
+    const Vec<3> v = from.segment<3>(7);
+    const Vec<3> d = to.head<3>() - from.head<3>() - dt * v;
+    const Vec<3> dv = to.segment<3>(7) - v;
+    // E(q) = 2 rows 1..3 of R_right(q^*): dq (x) q^* = R_right(q^*) dq.
+    const Mat<4, 4> right_conj = quaternionRightMatrix(q_conj);
+    const Mat<3, 4> E = 2.0 * right_conj.bottomRows<3>();
+    F.block<3, 4>(0, 3) = -skewSymmetric(d) * E;
+    F.block<4, 4>(3, 3) = quaternionRightMatrix(quaternionProduct<double>(q_conj, q_to));
+    F.block<3, 4>(7, 3) = -skewSymmetric(dv) * E;
+    const double v2 = v.squaredNorm();
+    if (v2 > 1e-18) {
+      F.block<3, 3>(0, 7) += d * v.transpose() / v2;
+      F.block<3, 3>(7, 7) += dv * v.transpose() / v2;
+    }
+    return F;
+  }
+
   /// Plain difference (the quaternion is compared componentwise).
   static State difference(const State& a, const State& b) { return a - b; }
 };

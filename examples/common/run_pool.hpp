@@ -13,7 +13,7 @@
 #include <thread>
 #include <vector>
 
-namespace tree_width_study {
+namespace sylva_examples {
 
 inline std::string formatDuration(double seconds) {
   char buf[32];
@@ -74,4 +74,4 @@ std::vector<Result> runAll(int count,
   return results;
 }
 
-}  // namespace tree_width_study
+}  // namespace sylva_examples

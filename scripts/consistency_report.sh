@@ -1,0 +1,35 @@
+#!/usr/bin/env bash
+# Regenerates docs/consistency.md:
+#   1. a Release build of examples/consistency in BUILD_DIR (default build-consistency; clang++
+#      when installed and CXX is not set: it compiles sylva's templates about 3x faster),
+#   2. consistency --suite planar,monocular,monocular-forests --json and
+#      consistency --suite monocular-factors --runs FACTOR_RUNS --json (THREADS threads),
+#   3. scripts/consistency_report.py, which writes the page from the two JSON files (kept in
+#      BUILD_DIR).
+# About 25 minutes on 2 cores. Usage: bash scripts/consistency_report.sh [BUILD_DIR]
+# Environment: THREADS (default 2), JOBS (default 2), FACTOR_RUNS (default 10).
+set -euo pipefail
+
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+build_dir="${1:-${root}/build-consistency}"
+threads="${THREADS:-2}"
+jobs="${JOBS:-2}"
+factor_runs="${FACTOR_RUNS:-10}"
+
+# shellcheck source=lib/install_packages.sh
+source "${root}/scripts/lib/install_packages.sh"
+sylva_install_packages build-essential cmake libeigen3-dev libcli11-dev nlohmann-json3-dev libboost-math-dev python3
+
+if [[ ! -f "${build_dir}/CMakeCache.txt" && -z "${CXX:-}" ]] && command -v clang++ > /dev/null; then
+  export CXX=clang++
+fi
+cmake -S "${root}" -B "${build_dir}" -DCMAKE_BUILD_TYPE=Release \
+  -DSYLVA_BUILD_TESTS=OFF -DSYLVA_BUILD_BENCHMARKS=OFF -DSYLVA_BUILD_EXAMPLES=ON
+cmake --build "${build_dir}" -j "${jobs}" --target consistency
+
+program="${build_dir}/examples/consistency/consistency"
+"${program}" --suite planar,monocular,monocular-forests --threads "${threads}" --json > "${build_dir}/consistency_suites.json"
+"${program}" --suite monocular-factors --runs "${factor_runs}" --threads "${threads}" --json > "${build_dir}/consistency_factors.json"
+python3 "${root}/scripts/consistency_report.py" "${build_dir}/consistency_suites.json" \
+  "${build_dir}/consistency_factors.json" "bash scripts/consistency_report.sh" > "${root}/docs/consistency.md"
+echo "consistency_report.sh: wrote docs/consistency.md"
