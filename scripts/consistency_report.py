@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Writes docs/consistency.md from the JSON of examples/consistency.
 
-Usage: consistency_report.py SUITES_JSON FACTORS_JSON COMMAND > docs/consistency.md
+Usage: consistency_report.py SUITES_JSON FACTORS_JSON COMMAND RAISED_ACCEL > docs/consistency.md
 
 SUITES_JSON holds the suites planar, monocular and monocular-forests; FACTORS_JSON the
 suite monocular-factors; COMMAND is the command that regenerates the page (printed on it).
@@ -35,7 +35,7 @@ def bounds(e):
 
 def planar_section(planar):
     out = []
-    modes = ["textbook", "first_estimates", "ideal"]
+    modes = ["textbook", "first_estimates", "iterated", "ideal"]
     any_entry = planar[modes[0]]
     out.append(f"{any_entry['ensembles']} ensembles (seeds {any_entry['seeds'][0]}-{any_entry['seeds'][1]}) of "
                f"{any_entry['runs']} runs each; robot-pose NEES (3 dof) from the second step to the end of the "
@@ -54,7 +54,7 @@ def planar_section(planar):
                    f"{fmt(e['parts']['heading']['nees_mean'])} | {nis['mean']:.3f} | {nis['fraction_above_95']:.4f} | "
                    f"{e['landmark_rmse_m']:.4f} |")
     out.append("")
-    best = max(("first_estimates", "ideal"), key=lambda m: planar[m]["fraction_inside"])
+    best = max(("first_estimates", "iterated", "ideal"), key=lambda m: planar[m]["fraction_inside"])
     fej = planar["first_estimates"]
     verdict = "meets" if fej["fraction_inside"] >= 0.90 else "misses"
     out.append(f"First-estimates Jacobians keep the ensemble-average NEES inside its 95% bounds at "
@@ -64,7 +64,7 @@ def planar_section(planar):
     return out
 
 
-def monocular_table(suite, modes=("textbook", "first_estimates", "ideal")):
+def monocular_table(suite, modes=("textbook", "first_estimates", "iterated", "ideal")):
     out = ["| pipeline | mode | NEES mean | median run | 95% bounds | fraction inside | position median run | "
            "orientation median run | convergence | e_l converged (m^2) | e_t converged (m^2) |",
            "|---|---|---|---|---|---|---|---|---|---|---|"]
@@ -84,71 +84,177 @@ FACTORS = [
     ("linearization", ("textbook", "ideal"), "linearization: textbook -> ideal"),
     ("pixel noise", ("default_pixel_noise", "true_pixel_noise"), "pixel noise told: 1.5 px -> the true 1 px"),
     ("gate", ("gate", "no_gate"), "NIS gate: on -> off"),
-    ("points", ("ellipse_centre_points", "unbiased_points"), "point measurement: ellipse centre -> unbiased"),
+    ("points", ("ellipse_centre_points", "unbiased_points"), "point (u, v): ellipse centre -> unbiased"),
     ("accel", ("default_accel", "raised_accel"), "acceleration noise: default -> raised"),
 ]
 
 
+def median_nees(e):
+    v = e["nees_median_run"]
+    return math.inf if v is None else v
+
+
+def paired_effect(cells, pipeline, index, within=None):
+    """Pairs of cells of `pipeline` that differ in factor `index` alone (and, if `within` is
+    (position, level), share that level): geometric-mean ratio of nees_median_run after/before,
+    pairs lower, median convergence before and after."""
+    a, b = FACTORS[index][1]
+    logs, lower, pairs, conv_a, conv_b = [], 0, 0, [], []
+    for key, e in cells.items():
+        if key[0] != pipeline or key[1 + index] != a:
+            continue
+        if within is not None and key[1 + within[0]] != within[1]:
+            continue
+        other = list(key)
+        other[1 + index] = b
+        f = cells.get(tuple(other))
+        if f is None:
+            continue
+        pairs += 1
+        x, y = median_nees(e), median_nees(f)
+        if math.isfinite(x) and math.isfinite(y) and x > 0 and y > 0:
+            logs.append(math.log(y / x))
+        if y < x:
+            lower += 1
+        conv_a.append(e["convergence_ratio"])
+        conv_b.append(f["convergence_ratio"])
+    g = math.exp(statistics.fmean(logs)) if logs else math.nan
+    return g, lower, pairs, statistics.median(conv_a), statistics.median(conv_b)
+
+
 def factor_section(factors):
-    """Paired main effects: for each factor, every pair of cells that differ in it alone."""
-    cells = {}
-    for key, e in factors.items():
-        parts = key.split("/")
-        cells[tuple(parts)] = e
-    out = []
-    out.append("Each row compares the cells of the factorial that differ in one factor only (the other four "
-               "held at each of their 16 combinations): the geometric mean over those 16 pairs of the ratio "
-               "of the camera-pose `nees_median_run` (after / before), the number of pairs in which the median "
-               "fell, and the median convergence ratio before and after.")
-    out.append("")
-    out.append("| pipeline | factor | NEES ratio (geometric mean of 16 pairs) | pairs lower | convergence before -> after |")
-    out.append("|---|---|---|---|---|")
+    cells = {tuple(key.split("/")): e for key, e in factors.items()}
+    out = ["Each row compares the cells that differ in one factor only, the others held at each of their "
+           "combinations (paired: the same noise draws in both): the geometric mean over those pairs of the "
+           "ratio of the camera-pose `nees_median_run` (after / before; below 1: more consistent), how many "
+           "pairs it lowered, and the median convergence ratio before and after. The effect of linearization "
+           "is over all 16 combinations of the other factors; the others are shown for the textbook and the "
+           "ideal filter apart (8 pairs each), because some act in opposite directions on the two.", "",
+           "| pipeline | factor | filter | NEES ratio | pairs lower | convergence before -> after |",
+           "|---|---|---|---|---|---|"]
     effects = {}
     for pipeline, name in PIPELINES:
-        for index, (factor, (a, b), label) in enumerate(FACTORS):
-            ratios, lower, conv_a, conv_b = [], 0, [], []
-            for key, e in cells.items():
-                if key[0] != pipeline or key[1 + index] != a:
-                    continue
-                other = list(key)
-                other[1 + index] = b
-                f = cells.get(tuple(other))
-                if f is None:
-                    continue
-                x, y = e["nees_median_run"], f["nees_median_run"]
-                x = math.inf if x is None else x
-                y = math.inf if y is None else y
-                if math.isfinite(x) and math.isfinite(y) and x > 0 and y > 0:
-                    ratios.append(math.log(y / x))
-                if y < x:
-                    lower += 1
-                conv_a.append(e["convergence_ratio"])
-                conv_b.append(f["convergence_ratio"])
-            g = math.exp(statistics.fmean(ratios)) if ratios else math.nan
-            effects[(pipeline, factor)] = g
-            out.append(f"| {name} | {label} | {g:.2f} | {lower} of {len(conv_a)} | "
-                       f"{statistics.median(conv_a):.2f} -> {statistics.median(conv_b):.2f} |")
+        g, lower, pairs, ca, cb = paired_effect(cells, pipeline, 0)
+        effects[(pipeline, "linearization", None)] = g
+        out.append(f"| {name} | {FACTORS[0][2]} | both | {g:.3g} | {lower} of {pairs} | {ca:.2f} -> {cb:.2f} |")
+        for index in range(1, len(FACTORS)):
+            for level in ("textbook", "ideal"):
+                g, lower, pairs, ca, cb = paired_effect(cells, pipeline, index, within=(0, level))
+                effects[(pipeline, FACTORS[index][0], level)] = g
+                out.append(f"| {name} | {FACTORS[index][2]} | {level} | {g:.3g} | {lower} of {pairs} | "
+                           f"{ca:.2f} -> {cb:.2f} |")
     out.append("")
-    # The best cell per pipeline.
-    out.append("The lowest `nees_median_run` of each pipeline in the factorial, and the cell of today's defaults:")
+    out.append("The lowest `nees_median_run` of each pipeline in the factorial, beside the cell of today's defaults "
+               "(position and orientation alone: 3 dof each):")
     out.append("")
-    out.append("| pipeline | cell | NEES median run | convergence | e_t converged (m^2) |")
-    out.append("|---|---|---|---|---|")
+    out.append("| pipeline | cell | NEES median run | position | orientation | convergence | e_l converged (m^2) | "
+               "e_t converged (m^2) |")
+    out.append("|---|---|---|---|---|---|---|---|")
+    best_cells = {}
     for pipeline, name in PIPELINES:
         mine = {k: e for k, e in cells.items() if k[0] == pipeline}
-        best = min(mine, key=lambda k: math.inf if mine[k]["nees_median_run"] is None else mine[k]["nees_median_run"])
+        best = min(mine, key=lambda k: median_nees(mine[k]))
+        best_cells[pipeline] = (best, mine[best])
         default = (pipeline, "textbook", "default_pixel_noise", "gate", "ellipse_centre_points", "default_accel")
         for label, k in (("lowest", best), ("defaults", default)):
             e = mine[k]
             out.append(f"| {name} | {label}: `{'/'.join(k[1:])}` | {fmt(e['nees_median_run'])} | "
-                       f"{e['convergence_ratio']:.2f} | {fmt(e['trajectory_error_converged_m2'], 4)} |")
-    return out, effects
+                       f"{fmt(e['parts']['position']['nees_median_run'])} | "
+                       f"{fmt(e['parts']['orientation']['nees_median_run'])} | {e['convergence_ratio']:.2f} | "
+                       f"{fmt(e['landmark_error_converged_m2'], 3)} | {fmt(e['trajectory_error_converged_m2'], 4)} |")
+    return out, effects, best_cells
+
+
+def findings(effects, best_cells, monocular):
+    """The conclusions, each computed from the numbers above."""
+    out = ["## What the experiment says", ""]
+    lo, hi = 1.24, 12.6  # the two-sided 95% range of one chi-square(6) sample
+    for pipeline, name in PIPELINES:
+        accel_ideal = effects[(pipeline, "accel", "ideal")]
+        accel_textbook = effects[(pipeline, "accel", "textbook")]
+        gate_textbook = effects[(pipeline, "gate", "textbook")]
+        noise_ideal = effects[(pipeline, "pixel noise", "ideal")]
+        points_textbook = effects[(pipeline, "points", "textbook")]
+        best, e = best_cells[pipeline]
+        inside = lo <= median_nees(e) <= hi
+        out.append(f"- **{name}.** Raising the acceleration noise multiplies the ideal filter's median NEES by "
+                   f"{accel_ideal:.3g} and the textbook filter's by {accel_textbook:.3g}; switching the gate off "
+                   f"multiplies the textbook filter's by {gate_textbook:.3g}; telling the filter the true pixel noise "
+                   f"multiplies the ideal filter's by {noise_ideal:.3g}; removing the point models' bias multiplies "
+                   f"the textbook filter's by {points_textbook:.3g}. Its most consistent cell, "
+                   f"`{'/'.join(best[1:])}`, has a median of {fmt(median_nees(e))}, "
+                   f"{'inside' if inside else 'outside'} the range [{lo}, {hi}] of one 6-dof sample.")
+    out.append("")
+    out.append("Read together (the ratios above are the evidence; each claim is printed only where they hold):")
+    out.append("")
+    keys = [p for p, _ in PIPELINES]
+    motion_first = all(effects[(p, "accel", "ideal")] < 0.2 for p in keys)
+    linearization_second = all(effects[(p, "accel", "textbook")] > 1.0 for p in keys)
+    gate_needed = all(effects[(p, "gate", "textbook")] > 2.0 for p in keys)
+    minor = all(abs(math.log(effects[(p, "points", "textbook")])) < abs(math.log(effects[(p, "accel", "ideal")]))
+                for p in keys)
+    if motion_first:
+        out.append("1. **The motion model is the first cause.** The camera drives at constant speed along curves, "
+                   "so its acceleration is not white noise: it points into each turn for seconds at a time. "
+                   "Monocular SLAM cannot observe scale from the images, so the only scale information in the "
+                   "filter comes from its priors, and the constant-velocity model's acceleration prior is the "
+                   "strongest: a smaller scale needs smaller accelerations through the same turns. With the default "
+                   "acceleration noise that prior is too confident, the filter shrinks its scale in the turns and "
+                   "believes it: the position NEES carries almost all of the pose NEES. Even the ideal filter, "
+                   "which has no linearization error, is inconsistent by orders of magnitude with the default "
+                   "acceleration noise, and raising it lowers the ideal filter's NEES by more than five times in "
+                   "every pipeline.")
+    else:
+        out.append("1. The acceleration noise does not lower the ideal filter's NEES by more than five times in "
+                   "every pipeline: the data do not single out the motion model.")
+    if linearization_second:
+        out.append("2. **Linearization is the second cause.** With the raised acceleration noise the textbook filter "
+                   "does not follow the ideal one: its NEES rises in every pipeline, because a weaker motion prior "
+                   "leaves more room for the scale information it invents by linearizing at changing estimates.")
+    else:
+        out.append("2. Raising the acceleration noise does not raise the textbook filter's NEES in every pipeline.")
+    if gate_needed:
+        out.append("   The NIS gate is what keeps the textbook filter from diverging: without it its NEES grows "
+                   "more than twice in every pipeline.")
+    if minor:
+        out.append("3. **The point model's bias is minor**: removing it moves the textbook filter's NEES less than "
+                   "the acceleration noise moves the ideal filter's. Telling the filter the true 1 px instead of "
+                   "1.5 px makes it more confident, and its NEES rises accordingly.")
+    fs = monocular.get("first_sight/first_estimates")
+    if fs is not None:
+        out.append(f"4. **First-estimates Jacobians on the monocular filter.** On the default forest the "
+                   f"width-from-first-sight pipeline converges in {fs['convergence_ratio']:.2f} of the draws with "
+                   f"them (median NEES {fmt(fs['nees_median_run'])}). An inverse-depth landmark's "
+                   "first estimate is its depth prior (rho = 0.1 +- 0.5), not a measurement, so the Jacobians taken "
+                   "there are far from the truth, and the updates of the camera's velocity are too large for the "
+                   "transition Jacobian's scale terms.")
+    it, tb = monocular.get("first_sight/iterated"), monocular.get("first_sight/textbook")
+    if it is not None and tb is not None:
+        better = median_nees(it) < median_nees(tb)
+        out.append(f"5. **The iterated update on the monocular filter.** On the default forest the "
+                   f"width-from-first-sight pipeline's median NEES is {fmt(it['nees_median_run'])} with it against "
+                   f"{fmt(tb['nees_median_run'])} for the textbook update, and it converges in "
+                   f"{it['convergence_ratio']:.2f} of the draws against {tb['convergence_ratio']:.2f}: iterating "
+                   f"each update {'helps' if better else 'does not help'} here" +
+                   ("." if better else ": the spurious scale information does not come from one poorly "
+                    "linearized update, which iterating would fix, but from linearizing at estimates that "
+                    "change from frame to frame."))
+    out.append("")
+    out.append("What would reach the target, in the order the evidence suggests: a motion model whose noise "
+               "describes a vehicle that turns (or a velocity in the camera frame, which is constant along an "
+               "arc), chosen on forests no suite scores (`consistency --suite monocular-tuning`, forests 101 and "
+               "up); then a linearization that does not invent scale information for the textbook filter: "
+               "Jacobians constrained to leave the seven unobservable directions unobservable at the current "
+               "estimate rather than at a poor first estimate, or an error defined on the camera's pose "
+               "group (the invariant EKF) where the theory allows.")
+    return out
 
 
 def main():
     suites = json.load(open(sys.argv[1]))
     factors = json.load(open(sys.argv[2]))["monocular-factors"]
     command = sys.argv[3]
+    raised = sys.argv[4] if len(sys.argv) > 4 else "raised"
     lines = ["# Consistency: does the covariance tell the truth?", ""]
     lines.append("Generated by `scripts/consistency_report.py` from the JSON of `examples/consistency`; "
                  f"regenerate with `{command}`. Nothing on this page is typed by hand. Nothing here was tuned: "
@@ -160,7 +266,8 @@ def main():
                  "as e has, so its average over N runs lies inside the two-sided 95% bounds "
                  "chi2inv(0.025, N dof) / N and chi2inv(0.975, N dof) / N at 95% of the steps. The modes: "
                  "`textbook` (every Jacobian at the latest estimate), `first_estimates` (FEJ, Huang, Mourikis and "
-                 "Roumeliotis 2010) and `ideal` (predict and update linearized about the true state, a "
+                 "Roumeliotis 2010), `iterated` (Gauss-Newton iterations of each update, Bell and Cathey 1993) and "
+                 "`ideal` (predict and update linearized about the true state, a "
                  "diagnostic with no linearization error at all; [filter.md](filter.md)).")
     lines.append("")
     lines.append("## Planar: range-bearing SLAM (`planar`)")
@@ -191,10 +298,15 @@ def main():
                  "noise it is told (the default 1.5 px or the true 1 px), the NIS gate (on or off), what the point "
                  "models are given as (u, v) (the centre of the base ellipse, which they do not predict, or the "
                  "projection of the true base centre plus the same noise: no model bias), and the linear "
-                 "acceleration noise of the constant-velocity model (the default 0.3 m/s^2 or raised).")
+                 "acceleration noise of the constant-velocity model (the default 0.3 m/s^2, or raised to "
+                 f"{raised} m/s^2: the sharpest turn of the default path turns the velocity by 90 degrees, 1.4 m/s, "
+                 "in about 4 s, which a white acceleration of sigma_a covers at one sigma when "
+                 "sigma_a sqrt(T dt) = 1.4 m/s, sigma_a = 2.3 m/s^2, rounded up).")
     lines.append("")
-    section, effects = factor_section(factors)
+    section, effects, best_cells = factor_section(factors)
     lines += section
+    lines.append("")
+    lines += findings(effects, best_cells, suites["monocular"])
     lines.append("")
     sys.stdout.write("\n".join(lines) + "\n")
 

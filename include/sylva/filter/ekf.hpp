@@ -80,6 +80,20 @@ enum class LinearizationPoint {
   /// filter diverges for that reason alone. add and reparametrize still use the estimate.
   /// Linearizing at a state that was not handed over is refused (kInvalidArgument).
   kIdeal,
+  /// The iterated EKF (Bell and Cathey 1993; MRPT's kfIKF): each update takes Gauss-Newton
+  /// steps, relinearizing the measurement models at the updated estimate until it stops moving
+  /// (`IteratedUpdate`), then updates the covariance with the Jacobians of the last iterate.
+  /// Worth most where one linearization is poor: a landmark whose depth is still a prior
+  /// (inverse-depth initialization). The motion keeps the textbook Jacobian.
+  kIterated,
+};
+
+/// When the iterated update (LinearizationPoint::kIterated) stops: after `max_iterations`
+/// linearizations (the first at the prior estimate), or once no coordinate of the robot or of
+/// an observed landmark moved by more than `tolerance` prior standard deviations in a step.
+struct IteratedUpdate {
+  int max_iterations = 10;
+  double tolerance = 1e-3;
 };
 
 /// How `update(model, observations, fusion)` fuses a range of observations.
@@ -117,9 +131,10 @@ class BatchLinearizations {
   double* data_ = nullptr;
 };
 
-/// Reusable buffers of the batched update (innovation, S, R, L^-1 nu, linearizations).
+/// Reusable buffers of the batched update (innovation, S, R, L^-1 nu, linearizations, the
+/// landmark iterates of an iterated update).
 struct BatchWorkspace {
-  enum Slot { kInnovation, kInnovationCovariance, kNoise, kWhitenedInnovation, kInverseFactor, kSlotCount };
+  enum Slot { kInnovation, kInnovationCovariance, kNoise, kWhitenedInnovation, kInverseFactor, kIterates, kSlotCount };
   Eigen::VectorXd buffers[kSlotCount];
   Eigen::VectorXd lins;
   std::vector<int> offsets;
@@ -216,6 +231,19 @@ class BasicEkf {
     linearization_ = point;
   }
   LinearizationPoint linearizationPoint() const { return linearization_; }
+
+  /// The stopping rule of the iterated update (kInvalidArgument unless max_iterations >= 1
+  /// and tolerance > 0 is finite; the filter is then unchanged).
+  void setIteratedUpdate(const IteratedUpdate& settings) {
+    if (settings.max_iterations < 1 || !(settings.tolerance > 0.0) || !std::isfinite(settings.tolerance)) {
+      std::ostringstream os;
+      os << "Ekf::setIteratedUpdate: need max_iterations >= 1 and a finite tolerance > 0, got "
+         << settings.max_iterations << " and " << settings.tolerance;
+      fail(ErrorCode::kInvalidArgument, os.str());
+    }
+    iterated_ = settings;
+  }
+  const IteratedUpdate& iteratedUpdate() const { return iterated_; }
 
   /// The robot's true state, for LinearizationPoint::kIdeal: predict linearizes the motion
   /// about it, and updates the measurement models. Each predict uses it up, so hand
@@ -347,6 +375,13 @@ class BasicEkf {
     checkModel<Model>();
     constexpr int M = Model::kDim;
     if (!z.allFinite()) fail(ErrorCode::kNonFinite, nameOf<Model>() + ": measurement is not finite");
+    if (linearization_ == LinearizationPoint::kIterated) {
+      // The iterations live in the batched update; the innovation returned is the prior's.
+      const Innovation<M> prior = innovation(model, id, z, noise);
+      const Observation<Model> one[] = {Observation<Model>{id, z, noise}};
+      update(model, one);
+      return prior;
+    }
     const Linearization<Model> lin = linearize(model, id);
     const Vec<M> nu = detail::residual(model, z, lin.z_hat);
     if (!nu.allFinite()) fail(ErrorCode::kNonFinite, nameOf<Model>() + ": innovation is not finite");
@@ -413,26 +448,30 @@ class BasicEkf {
     if (!nu.allFinite()) fail(ErrorCode::kNonFinite, nameOf<Model>() + ": innovation is not finite");
 
     auto PHt = workspaceMatrix<Eigen::Dynamic>(total);
-    PHt.setZero();
-    for (int a = 0; a < k; ++a) accumulateCovarianceTimesHt<L>(lins.J_z_x(a), lins.J_z_l(a), lins.offset(a), PHt, a * M);
-    // S = H P H^T + R, lower triangle (block (a, b) for b <= a), from the columns of P H^T.
     auto S = batch_.matrix(detail::BatchWorkspace::kInnovationCovariance, total);
-    for (int a = 0; a < k; ++a) {
-      const int off = lins.offset(a);
-      for (int b = 0; b <= a; ++b) {
-        const auto col = PHt.middleCols(b * M, M);
-        S.block(a * M, b * M, M, M).noalias() =
-            lins.J_z_x(a) * col.template topRows<kRobotDim>() + lins.J_z_l(a) * col.template middleRows<L>(off);
+    // P H^T and S = H P H^T + R (lower triangle, block (a, b) for b <= a, from the columns of
+    // P H^T) for the linearizations in `lins`.
+    const auto formInnovationCovariance = [&] {
+      PHt.setZero();
+      for (int a = 0; a < k; ++a) accumulateCovarianceTimesHt<L>(lins.J_z_x(a), lins.J_z_l(a), lins.offset(a), PHt, a * M);
+      for (int a = 0; a < k; ++a) {
+        const int off = lins.offset(a);
+        for (int b = 0; b <= a; ++b) {
+          const auto col = PHt.middleCols(b * M, M);
+          S.block(a * M, b * M, M, M).noalias() =
+              lins.J_z_x(a) * col.template topRows<kRobotDim>() + lins.J_z_l(a) * col.template middleRows<L>(off);
+        }
       }
-    }
-    i = 0;
-    for (const Observation<Model>& obs : observations) {
-      S.block(i * M, i * M, M, M) += obs.noise.covariance();
-      ++i;
-    }
-    for (int j = 0; j < total; ++j)
-      if (!S.col(j).tail(total - j).allFinite())
-        fail(ErrorCode::kNonFinite, nameOf<Model>() + ": batched innovation covariance is not finite");
+      int n_obs = 0;
+      for (const Observation<Model>& obs : observations) {
+        S.block(n_obs * M, n_obs * M, M, M) += obs.noise.covariance();
+        ++n_obs;
+      }
+      for (int j = 0; j < total; ++j)
+        if (!S.col(j).tail(total - j).allFinite())
+          fail(ErrorCode::kNonFinite, nameOf<Model>() + ": batched innovation covariance is not finite");
+    };
+    formInnovationCovariance();
     // The joint R, kept for the Joseph form only.
     auto R = batch_.matrix(detail::BatchWorkspace::kNoise, std::is_same_v<UpdateForm, JosephUpdate> ? total : 0);
     if constexpr (std::is_same_v<UpdateForm, JosephUpdate>) {
@@ -447,6 +486,15 @@ class BasicEkf {
     if (llt.info() != Eigen::Success)
       fail(ErrorCode::kNotPositiveDefinite,
            nameOf<Model>() + ": batched innovation covariance is not positive definite");
+    if (linearization_ == LinearizationPoint::kIterated) {
+      iterateBatch(model, observations, lins, nu, PHt, llt, [&] {
+        formInnovationCovariance();
+        llt.compute(S);
+        if (llt.info() != Eigen::Success)
+          fail(ErrorCode::kNotPositiveDefinite,
+               nameOf<Model>() + ": batched innovation covariance is not positive definite at an iterate");
+      });
+    }
     applyGain<Eigen::Dynamic>(PHt, llt, nu, R, [&](const auto& A, auto&& out) {
       for (int a = 0; a < k; ++a) {
         out.middleCols(a * M, M).noalias() = A.template middleCols<kRobotDim>(0) * lins.J_z_x(a).transpose();
@@ -636,6 +684,78 @@ class BasicEkf {
   }
 
  private:
+  /// Gauss-Newton iterations of a batched update (LinearizationPoint::kIterated; Bell and
+  /// Cathey 1993): with the prior x and the Jacobians H_i at the iterate x_i,
+  ///   x_{i+1} = x + K_i (z - h(x_i) - H_i (x - x_i)),   K_i = P H_i^T (H_i P H_i^T + R)^-1,
+  /// on the blocks the observations see (the robot and their landmarks: nothing else enters
+  /// h). On return `lins`, `nu`, `PHt` and the factor of S belong to the last iterate, so the
+  /// ordinary gain step adds K_N (z - h(x_N) - H_N (x - x_N)) to the prior and updates P with
+  /// K_N and H_N. Stops after `iterated_.max_iterations` linearizations, or once no coordinate
+  /// of those blocks moved by more than `iterated_.tolerance` of its prior standard deviation.
+  /// Nothing of the filter is written here, so an error leaves it unchanged.
+  template <typename Model, typename ObservationRange, typename Lins, typename Nu, typename PHtMap, typename Llt,
+            typename Relinearized>
+  void iterateBatch(const Model& model, const ObservationRange& observations, Lins& lins, Nu& nu, const PHtMap& PHt,
+                    Llt& llt, Relinearized&& relinearized) {
+    using Landmark = typename Model::Landmark;
+    constexpr int M = Model::kDim;
+    constexpr int L = Landmark::kDim;
+    const int k = static_cast<int>(std::size(observations));
+    auto v = batch_.vector(detail::BatchWorkspace::kWhitenedInnovation, k * M);
+    auto landmark_iterates = batch_.vector(detail::BatchWorkspace::kIterates, k * L);
+    const RobotState robot_prior = robotMean();
+    RobotState robot_iterate = robot_prior;
+    for (int a = 0; a < k; ++a) landmark_iterates.template segment<L>(a * L) = mean_.template segment<L>(lins.offset(a));
+    const auto sigma = [&](int j) { return std::max(std::sqrt(std::max(cov_(j, j), 0.0)), 1e-300); };
+    for (int iteration = 1; iteration < iterated_.max_iterations; ++iteration) {
+      // The next iterate on the blocks the observations see: prior + K_i nu_i.
+      v = nu;
+      llt.solveInPlace(v);
+      RobotState robot_next = robot_prior + PHt.template topRows<kRobotDim>() * v;
+      detail::normalize<Robot>(robot_next);
+      double step = 0.0;
+      const RobotState robot_step = detail::difference<Robot>(robot_next, robot_iterate);
+      for (int j = 0; j < kRobotDim; ++j) step = std::max(step, std::abs(robot_step[j]) / sigma(j));
+      for (int a = 0; a < k; ++a) {
+        const int off = lins.offset(a);
+        Vec<L> next = mean_.template segment<L>(off) + PHt.template middleRows<L>(off) * v;
+        detail::normalize<Landmark>(next);
+        const Vec<L> landmark_step = detail::difference<Landmark>(next, Vec<L>(landmark_iterates.template segment<L>(a * L)));
+        for (int j = 0; j < L; ++j) step = std::max(step, std::abs(landmark_step[j]) / sigma(off + j));
+        landmark_iterates.template segment<L>(a * L) = next;
+      }
+      robot_iterate = robot_next;
+      // Relinearize there: nu_i = z - h(x_i) - H_i (x - x_i).
+      int i = 0;
+      for (const Observation<Model>& obs : observations) {
+        const Vec<L> landmark = landmark_iterates.template segment<L>(i * L);
+        const Linearization<Model> lin = linearizeAt(model, obs.id, robot_iterate, landmark);
+        lins.store(i, lin);
+        const Vec<L> prior = mean_.template segment<L>(lin.landmark_offset);
+        nu.template segment<M>(i * M) = detail::residual(model, obs.z, lin.z_hat) +
+                                        lin.J_z_x * detail::difference<Robot>(robot_iterate, robot_prior) +
+                                        lin.J_z_l * detail::difference<Landmark>(landmark, prior);
+        ++i;
+      }
+      if (!nu.allFinite()) fail(ErrorCode::kNonFinite, nameOf<Model>() + ": innovation is not finite at an iterate");
+      relinearized();
+      if (step < iterated_.tolerance) break;
+    }
+  }
+
+  /// h and its two Jacobians at the given robot and landmark state.
+  template <typename Model>
+  Linearization<Model> linearizeAt(const Model& model, Id id, const RobotState& robot,
+                                   const Vec<Model::Landmark::kDim>& landmark) const {
+    Linearization<Model> lin;
+    lin.landmark_offset = typedSlot<typename Model::Landmark>(id, Model::kName).offset;
+    lin.z_hat = detail::evaluate(model, robot, landmark, lin.J_z_x, lin.J_z_l);
+    if (!lin.z_hat.allFinite() || !lin.J_z_x.allFinite() || !lin.J_z_l.allFinite())
+      fail(ErrorCode::kNonFinite, nameOf<Model>() + ": prediction or Jacobian is not finite for landmark " +
+                                      std::to_string(id) + " at an iterate");
+    return lin;
+  }
+
   /// `update(model, observations, Fusion::kSequential)`: checks ids, types and measurements
   /// of all, then fuses them one by one.
   template <typename Model, typename ObservationRange>
@@ -1028,6 +1148,7 @@ class BasicEkf {
   /// over, NaN where none is (a new landmark, the robot after each predict).
   Eigen::VectorXd ideal_;
   LinearizationPoint linearization_ = LinearizationPoint::kCurrentEstimate;
+  IteratedUpdate iterated_;
   Eigen::MatrixXd cov_;  // lower triangle of the top-left n_ x n_ corner is authoritative
   std::vector<LandmarkSlot> slots_;
   std::unordered_map<Id, std::size_t> index_;
