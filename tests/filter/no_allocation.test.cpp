@@ -76,6 +76,20 @@ TEMPLATE_TEST_CASE("predict and a single update do not allocate in steady state"
   }
   Eigen::internal::set_is_malloc_allowed(true);
   CHECK(g_allocations.load() - before == 0);
+  // The iterated update runs in the batched update's workspaces: sized by one warm-up.
+  ekf.setLinearizationPoint(LinearizationPoint::kIterated);
+  ekf.update(RangeBearing{}, 0, Vec<2>(3.0, -1.4), r);
+  const long before_iterated = g_allocations.load();
+  Eigen::internal::set_is_malloc_allowed(false);
+  for (int step = 0; step < 20; ++step) {
+    ekf.predict(Vec<2>(0.5, 0.05), 0.1, q);
+    for (Id id : {3, 50, 120, 199}) {
+      const Vec<2> z = RangeBearing{}(ekf.robotMean(), ekf.template landmarkMean<Point2>(id)) + Vec<2>(0.01, -0.002);
+      ekf.update(RangeBearing{}, id, z, r);
+    }
+  }
+  Eigen::internal::set_is_malloc_allowed(true);
+  CHECK(g_allocations.load() - before_iterated == 0);
   CHECK(g_eigen_assert_failures.load() == 0);
 }
 
