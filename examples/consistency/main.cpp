@@ -111,7 +111,6 @@ struct Settings {
 // ---------------------------------------------------------------------------- planar
 
 json planarSuite(const Settings& settings) {
-  const consistency::PlanarWorldOptions world_options;
   struct Job {
     int mode, ensemble;
   };
@@ -123,7 +122,7 @@ json planarSuite(const Settings& settings) {
       [&](int i) {
         const Job& job = jobs[static_cast<std::size_t>(i)];
         const std::uint64_t seed = static_cast<std::uint64_t>(job.ensemble) + 1;
-        const consistency::PlanarWorld world = consistency::makePlanarWorld(world_options, seed);
+        const consistency::PlanarWorld world = consistency::makePlanarWorld(seed);
         consistency::PlanarEnsemble out;
         for (int run = 0; run < settings.runs; ++run)
           consistency::runPlanar(world, kPlanarModes[job.mode].point, seed, run, out);

@@ -20,15 +20,12 @@
 
 #include <sylva/consistency/monte_carlo.hpp>
 #include <sylva/consistency/nees.hpp>
-#include <sylva/core/angles.hpp>
 #include <sylva/filter/ekf.hpp>
 #include <sylva/landmarks/point2.hpp>
 #include <sylva/measurements/range_bearing.hpp>
 #include <sylva/motion/unicycle_2d.hpp>
-#include <sylva/sim/landmarks_2d.hpp>
-#include <sylva/sim/loop_trajectory_2d.hpp>
+#include <sylva/sim/planar_loop_world.hpp>
 #include <sylva/sim/random.hpp>
-#include <sylva/sim/range_bearing_sensor.hpp>
 
 namespace consistency {
 
@@ -37,56 +34,22 @@ using sylva::Id;
 using sylva::Mat;
 using sylva::Vec;
 
-/// The range_bearing_slam defaults (its Options), driven for `laps` laps.
-struct PlanarWorldOptions {
-  int landmarks = 120;
-  double min_separation_m = 1.5;
-  double perimeter_m = 120.0;
-  double speed_mps = 1.0;
-  double dt_s = 0.1;
-  double laps = 2.0;
-  double max_range_m = 10.0;
-  double fov_half_angle_rad = 90.0 * sylva::kRadPerDeg;
-  double sigma_range_m = 0.05;
-  double sigma_bearing_rad = 1.0 * sylva::kRadPerDeg;
-  double sigma_v_mps = 0.05;
-  double sigma_omega_radps = 1.0 * sylva::kRadPerDeg;
-};
-
+/// The range_bearing_slam world (sylva::sim::PlanarLoopWorld with its defaults), driven for
+/// `laps` laps, and the noise the filter is told (the simulator's own).
 struct PlanarWorld {
-  sylva::sim::LoopTrajectory2D trajectory;
-  sylva::sim::RangeBearingSensor2D sensor;
-  std::vector<sylva::sim::TrueLandmark2D> landmarks;
+  sylva::sim::PlanarLoopWorld sim;
   int steps;
   Gaussian<2> odometry_noise;
   Gaussian<2> sensor_noise;
 };
 
-inline PlanarWorld makePlanarWorld(const PlanarWorldOptions& o, std::uint64_t seed) {
-  sylva::sim::LoopTrajectory2DOptions t;
-  t.perimeter_m = o.perimeter_m;
-  t.speed_mps = o.speed_mps;
-  t.dt_s = o.dt_s;
-  t.sigma_v_mps = o.sigma_v_mps;
-  t.sigma_omega_radps = o.sigma_omega_radps;
-  sylva::sim::LoopTrajectory2D trajectory(t);
-  sylva::sim::RangeBearingSensor2DOptions s;
-  s.max_range_m = o.max_range_m;
-  s.fov_half_angle_rad = o.fov_half_angle_rad;
-  s.sigma_range_m = o.sigma_range_m;
-  s.sigma_bearing_rad = o.sigma_bearing_rad;
-  sylva::sim::Rng world_rng(sylva::sim::deriveSeed(seed, 0));
-  sylva::sim::LandmarkField2DOptions field;
-  field.count = o.landmarks;
-  field.min_separation_m = o.min_separation_m;
-  auto landmarks = sylva::sim::landmarksAlongPath(trajectory.path(), field, world_rng);
-  const int steps = static_cast<int>(o.laps * trajectory.stepsPerLap() + 0.5);
-  return PlanarWorld{trajectory,
-                     sylva::sim::RangeBearingSensor2D(s),
-                     std::move(landmarks),
-                     steps,
-                     Gaussian<2>::sigmas(Vec<2>(o.sigma_v_mps, o.sigma_omega_radps)),
-                     Gaussian<2>::sigmas(Vec<2>(o.sigma_range_m, o.sigma_bearing_rad))};
+inline PlanarWorld makePlanarWorld(std::uint64_t seed, double laps = 2.0) {
+  const sylva::sim::PlanarLoopWorldOptions o;
+  sylva::sim::PlanarLoopWorld sim = sylva::sim::makePlanarLoopWorld(o, seed);
+  const int steps = static_cast<int>(laps * sim.trajectory.stepsPerLap() + 0.5);
+  return PlanarWorld{std::move(sim), steps,
+                     Gaussian<2>::sigmas(Vec<2>(o.trajectory.sigma_v_mps, o.trajectory.sigma_omega_radps)),
+                     Gaussian<2>::sigmas(Vec<2>(o.sensor.sigma_range_m, o.sensor.sigma_bearing_rad))};
 }
 
 /// The statistics of one ensemble of one mode.
@@ -107,23 +70,23 @@ inline void runPlanar(const PlanarWorld& world,
                       PlanarEnsemble& out) {
   using Filter = sylva::Ekf<sylva::Unicycle2D, sylva::Point2>;
   sylva::sim::Rng rng(sylva::sim::deriveSeed(seed, 1 + static_cast<std::uint64_t>(run)));
-  const auto truth = world.trajectory.simulate(world.steps, rng);
-  const double dt = world.trajectory.dt();
+  const auto truth = world.sim.trajectory.simulate(world.steps, rng);
+  const double dt = world.sim.trajectory.dt();
   const bool ideal = point == sylva::LinearizationPoint::kIdeal;
-  Filter ekf(world.trajectory.startPose(), Mat<3, 3>::Zero());
+  Filter ekf(world.sim.trajectory.startPose(), Mat<3, 3>::Zero());
   ekf.setLinearizationPoint(point);
-  ekf.reserve(2 * static_cast<int>(world.landmarks.size()));
+  ekf.reserve(2 * static_cast<int>(world.sim.landmarks.size()));
   const sylva::RangeBearing model;
   const sylva::InverseRangeBearing inverse;
   std::vector<sylva::Observation<sylva::RangeBearing>> paired;
-  Vec<3> previous_truth = world.trajectory.startPose();
+  Vec<3> previous_truth = world.sim.trajectory.startPose();
   for (int k = 0; k < world.steps; ++k) {
     const auto& step = truth[static_cast<std::size_t>(k)];
     if (ideal) ekf.setIdealRobot(previous_truth);
     ekf.predict(step.odometry, dt, world.odometry_noise);
     if (ideal) ekf.setIdealRobot(step.true_pose);
     previous_truth = step.true_pose;
-    const auto readings = world.sensor.observe(step.true_pose, world.landmarks, rng);
+    const auto readings = world.sim.sensor.observe(step.true_pose, world.sim.landmarks, rng);
     paired.clear();
     for (const auto& reading : readings) {
       if (!ekf.contains(reading.id)) continue;
@@ -135,7 +98,7 @@ inline void runPlanar(const PlanarWorld& world,
       if (ekf.contains(reading.id)) continue;
       ekf.add(reading.id, inverse, reading.z, world.sensor_noise);
       if (ideal)
-        ekf.setIdealLandmark<sylva::Point2>(reading.id, world.landmarks[static_cast<std::size_t>(reading.id)].position);
+        ekf.setIdealLandmark<sylva::Point2>(reading.id, world.sim.landmarks[static_cast<std::size_t>(reading.id)].position);
     }
     if (k == 0) continue;
     const Vec<3> e = sylva::Unicycle2D::difference(step.true_pose, ekf.robotMean());
@@ -147,7 +110,7 @@ inline void runPlanar(const PlanarWorld& world,
   out.final_position_error_sum_m += sylva::Unicycle2D::difference(truth.back().true_pose, ekf.robotMean()).head<2>().norm();
   for (const auto& slot : ekf.slots()) {
     out.landmark_squared_error_sum +=
-        (ekf.landmarkMean<sylva::Point2>(slot.id) - world.landmarks[static_cast<std::size_t>(slot.id)].position)
+        (ekf.landmarkMean<sylva::Point2>(slot.id) - world.sim.landmarks[static_cast<std::size_t>(slot.id)].position)
             .squaredNorm();
     ++out.landmarks_mapped;
   }

@@ -189,33 +189,21 @@ struct RunResult {
   range_bearing_slam::SvgMapData map;  // filled for the first run only
 };
 
-sylva::sim::LoopTrajectory2DOptions trajectoryOptions(const Options& o) {
-  sylva::sim::LoopTrajectory2DOptions t;
-  t.perimeter_m = o.perimeter_m;
-  t.speed_mps = o.speed_mps;
-  t.dt_s = o.dt_s;
-  t.sigma_v_mps = o.sigma_v_mps;
-  t.sigma_omega_radps = o.sigma_omega_degps * kRadPerDeg;
-  return t;
-}
-
-sylva::sim::RangeBearingSensor2DOptions sensorOptions(const Options& o) {
-  sylva::sim::RangeBearingSensor2DOptions s;
-  s.max_range_m = o.max_range_m;
-  s.fov_half_angle_rad = o.fov_half_angle_deg * kRadPerDeg;
-  s.sigma_range_m = o.sigma_range_m;
-  s.sigma_bearing_rad = o.sigma_bearing_deg * kRadPerDeg;
-  return s;
-}
-
 World makeWorld(const Options& o) {
-  sylva::sim::LoopTrajectory2D trajectory(trajectoryOptions(o));
-  sylva::sim::RangeBearingSensor2D sensor(sensorOptions(o));
-  sylva::sim::Rng world_rng(sylva::sim::deriveSeed(o.seed, 0));
-  sylva::sim::LandmarkField2DOptions field;
-  field.count = o.landmarks;
-  field.min_separation_m = o.min_separation_m;
-  auto landmarks = sylva::sim::landmarksAlongPath(trajectory.path(), field, world_rng);
+  sylva::sim::PlanarLoopWorldOptions options;
+  options.trajectory.perimeter_m = o.perimeter_m;
+  options.trajectory.speed_mps = o.speed_mps;
+  options.trajectory.dt_s = o.dt_s;
+  options.trajectory.sigma_v_mps = o.sigma_v_mps;
+  options.trajectory.sigma_omega_radps = o.sigma_omega_degps * kRadPerDeg;
+  options.landmarks.count = o.landmarks;
+  options.landmarks.min_separation_m = o.min_separation_m;
+  options.sensor.max_range_m = o.max_range_m;
+  options.sensor.fov_half_angle_rad = o.fov_half_angle_deg * kRadPerDeg;
+  options.sensor.sigma_range_m = o.sigma_range_m;
+  options.sensor.sigma_bearing_rad = o.sigma_bearing_deg * kRadPerDeg;
+  sylva::sim::PlanarLoopWorld simulated = sylva::sim::makePlanarLoopWorld(options, o.seed);
+  auto& trajectory = simulated.trajectory;
   const int steps = o.steps > 0 ? o.steps : (6 * trajectory.stepsPerLap() + 4) / 5;
   if (steps < 2)
     sylva::fail(sylva::ErrorCode::kInvalidArgument,
@@ -226,8 +214,8 @@ World makeWorld(const Options& o) {
   const Association association = o.association == "nn"     ? Association::kNearestNeighbor
                                   : o.association == "jcbb" ? Association::kJcbb
                                                             : Association::kKnown;
-  return World{
-      trajectory, sensor, std::move(landmarks), steps, q, r, association, o.update == "batched"};
+  return World{trajectory, simulated.sensor, std::move(simulated.landmarks), steps, q, r, association,
+               o.update == "batched"};
 }
 
 /// Map landmarks whose predicted reading lies within the sensor's reach (with a margin for

@@ -15,6 +15,7 @@
 #include "sylva/sim/laser_scene_2d.hpp"
 #include "sylva/sim/loop_path_2d.hpp"
 #include "sylva/sim/loop_trajectory_2d.hpp"
+#include "sylva/sim/planar_loop_world.hpp"
 #include "sylva/sim/random.hpp"
 #include "sylva/sim/range_bearing_sensor.hpp"
 #include "sylva/sim/tree_forest.hpp"

@@ -54,42 +54,29 @@ TEMPLATE_TEST_CASE("predict and a single update do not allocate in steady state"
   const auto r = Gaussian<2>::sigmas(Vec<2>(0.05, 0.02));
   const auto q = Gaussian<2>::sigmas(Vec<2>(0.05, 0.02));
   for (int i = 0; i < 200; ++i) ekf.add(i, InverseRangeBearing{}, Vec<2>(3.0 + 0.05 * i, -1.5 + 0.015 * i), r);
-  ekf.update(RangeBearing{}, 0, Vec<2>(3.0, -1.4), r);  // warm-up: sizes the workspace
-
-  const long before = g_allocations.load();
-  Eigen::internal::set_is_malloc_allowed(false);
-  for (int step = 0; step < 20; ++step) {
-    ekf.predict(Vec<2>(0.5, 0.05), 0.1, q);
-    for (Id id : {3, 50, 120, 199}) {
-      const Vec<2> z = RangeBearing{}(ekf.robotMean(), ekf.template landmarkMean<Point2>(id)) + Vec<2>(0.01, -0.002);
-      ekf.update(RangeBearing{}, id, z, r);
+  // 20 steps of a predict and four updates, with allocation forbidden: how many happened.
+  const auto allocationsOfSteps = [&] {
+    const long before = g_allocations.load();
+    Eigen::internal::set_is_malloc_allowed(false);
+    for (int step = 0; step < 20; ++step) {
+      ekf.predict(Vec<2>(0.5, 0.05), 0.1, q);
+      for (Id id : {3, 50, 120, 199}) {
+        const Vec<2> z = RangeBearing{}(ekf.robotMean(), ekf.template landmarkMean<Point2>(id)) + Vec<2>(0.01, -0.002);
+        ekf.update(RangeBearing{}, id, z, r);
+      }
     }
-  }
+    Eigen::internal::set_is_malloc_allowed(true);
+    return g_allocations.load() - before;
+  };
+  ekf.update(RangeBearing{}, 0, Vec<2>(3.0, -1.4), r);  // warm-up: sizes the workspace
+  CHECK(allocationsOfSteps() == 0);
   // First-estimates Jacobians evaluate each model twice, without allocating either.
   ekf.setLinearizationPoint(LinearizationPoint::kFirstEstimates);
-  for (int step = 0; step < 20; ++step) {
-    ekf.predict(Vec<2>(0.5, 0.05), 0.1, q);
-    for (Id id : {3, 50, 120, 199}) {
-      const Vec<2> z = RangeBearing{}(ekf.robotMean(), ekf.template landmarkMean<Point2>(id)) + Vec<2>(0.01, -0.002);
-      ekf.update(RangeBearing{}, id, z, r);
-    }
-  }
-  Eigen::internal::set_is_malloc_allowed(true);
-  CHECK(g_allocations.load() - before == 0);
+  CHECK(allocationsOfSteps() == 0);
   // The iterated update runs in the batched update's workspaces: sized by one warm-up.
   ekf.setLinearizationPoint(LinearizationPoint::kIterated);
   ekf.update(RangeBearing{}, 0, Vec<2>(3.0, -1.4), r);
-  const long before_iterated = g_allocations.load();
-  Eigen::internal::set_is_malloc_allowed(false);
-  for (int step = 0; step < 20; ++step) {
-    ekf.predict(Vec<2>(0.5, 0.05), 0.1, q);
-    for (Id id : {3, 50, 120, 199}) {
-      const Vec<2> z = RangeBearing{}(ekf.robotMean(), ekf.template landmarkMean<Point2>(id)) + Vec<2>(0.01, -0.002);
-      ekf.update(RangeBearing{}, id, z, r);
-    }
-  }
-  Eigen::internal::set_is_malloc_allowed(true);
-  CHECK(g_allocations.load() - before_iterated == 0);
+  CHECK(allocationsOfSteps() == 0);
   CHECK(g_eigen_assert_failures.load() == 0);
 }
 

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "sylva/sim/landmarks_2d.hpp"
+#include "sylva/sim/planar_loop_world.hpp"
 
 using sylva::ErrorCode;
 using sylva::Vec;
@@ -85,4 +86,29 @@ TEST_CASE("landmarksAlongPath: invalid or impossible requests throw", "[sim][lan
         }));
       },
       bad));
+}
+
+TEST_CASE("PlanarLoopWorld: the range_bearing_slam world, the same from the same seed", "[sim]") {
+  const sylva::sim::PlanarLoopWorldOptions options;
+  CHECK(options.landmarks.count == 120);
+  CHECK(options.sensor.max_range_m == 10.0);
+  CHECK(options.trajectory.sigma_v_mps == 0.05);
+  const auto a = sylva::sim::makePlanarLoopWorld(options, 7);
+  const auto b = sylva::sim::makePlanarLoopWorld(options, 7);
+  const auto c = sylva::sim::makePlanarLoopWorld(options, 8);
+  REQUIRE(a.landmarks.size() == 120);
+  bool same = true, differs = false;
+  for (std::size_t i = 0; i < a.landmarks.size(); ++i) {
+    same = same && a.landmarks[i].position == b.landmarks[i].position;
+    differs = differs || a.landmarks[i].position != c.landmarks[i].position;
+  }
+  CHECK(same);
+  CHECK(differs);
+  // The landmarks come from the stream deriveSeed(seed, 0), as range_bearing_slam draws them.
+  sylva::sim::Rng rng(sylva::sim::deriveSeed(7, 0));
+  const auto direct = sylva::sim::landmarksAlongPath(a.trajectory.path(), options.landmarks, rng);
+  CHECK(direct.front().position == a.landmarks.front().position);
+  sylva::sim::PlanarLoopWorldOptions bad;
+  bad.landmarks.count = 0;
+  CHECK_THROWS_AS(sylva::sim::makePlanarLoopWorld(bad, 1), sylva::Error);
 }
