@@ -16,6 +16,7 @@
 #include <sylva/motion/odometry_2d.hpp>
 #include <sylva/motion/unicycle_2d.hpp>
 
+#include "filter/planar_scene.hpp"
 #include "sylva_catch.hpp"
 
 using namespace sylva;
@@ -24,25 +25,24 @@ namespace unity_filter_first_estimates {
 
 using Filter = Ekf<Unicycle2D, Point2>;
 
-Gaussian<2> controlNoise() { return Gaussian<2>::sigmas(Vec<2>(0.1, 0.05)); }
-Gaussian<2> sensorNoise() { return Gaussian<2>::sigmas(Vec<2>(0.2, 0.05)); }
+using sylva_test::filterWithLandmark7;
+using sylva_test::planarControlNoise;
+using sylva_test::planarSensorNoise;
 
 /// A filter that has seen landmark 7, then moved and fused two observations of it, so that
 /// the landmark's estimate and the robot's differ from the first estimate and the latest
 /// prediction.
 struct Scene {
-  Filter ekf{Vec<3>::Zero(), Mat<3, 3>::Identity() * 0.01};
+  Filter ekf;
   Vec<2> first_landmark;
   Vec<3> latest_prediction;
-  explicit Scene(LinearizationPoint point) {
-    ekf.setLinearizationPoint(point);
-    ekf.add(7, InverseRangeBearing(), Vec<2>(5.0, 0.4), sensorNoise());
+  explicit Scene(LinearizationPoint point) : ekf(filterWithLandmark7(Vec<3>::Zero(), point)) {
     first_landmark = ekf.landmarkMean<Point2>(7);
-    ekf.predict(Vec<2>(1.0, 0.2), 1.0, controlNoise());
-    ekf.update(RangeBearing(), 7, Vec<2>(4.3, 0.35), sensorNoise());
-    ekf.predict(Vec<2>(1.0, 0.1), 1.0, controlNoise());
+    ekf.predict(Vec<2>(1.0, 0.2), 1.0, planarControlNoise());
+    ekf.update(RangeBearing(), 7, Vec<2>(4.3, 0.35), planarSensorNoise());
+    ekf.predict(Vec<2>(1.0, 0.1), 1.0, planarControlNoise());
     latest_prediction = ekf.robotMean();
-    ekf.update(RangeBearing(), 7, Vec<2>(3.1, 0.1), sensorNoise());
+    ekf.update(RangeBearing(), 7, Vec<2>(3.1, 0.1), planarSensorNoise());
   }
 };
 
@@ -86,7 +86,7 @@ TEST_CASE("first estimates: the transition Jacobian spans the latest two predict
   Mat<3, 3> F;
   Mat<3, 2> G;
   const Vec<3> next = Unicycle2D()(posterior, u, dt, F, G);
-  ekf.predict(u, dt, controlNoise());
+  ekf.predict(u, dt, planarControlNoise());
   CHECK(ekf.robotMean().isApprox(next, 1e-12));
 
   // eq. 34: [1 0 -(y' - y_prior); 0 1 (x' - x_prior); 0 0 1] with the previous prediction.
@@ -95,7 +95,7 @@ TEST_CASE("first estimates: the transition Jacobian spans the latest two predict
   Phi(1, 2) = next[0] - scene.latest_prediction[0];
   REQUIRE_FALSE(Phi.isApprox(F, 1e-3));  // differs from the textbook Jacobian here
   const Mat<3, 3> expected_rr =
-      Phi * P.topLeftCorner<3, 3>() * Phi.transpose() + G * controlNoise().covariance() * G.transpose();
+      Phi * P.topLeftCorner<3, 3>() * Phi.transpose() + G * planarControlNoise().covariance() * G.transpose();
   const Mat<3, 2> expected_rl = Phi * P.block<3, 2>(0, 3);
   CHECK(ekf.robotCovariance().isApprox(expected_rr, 1e-12));
   CHECK(ekf.robotLandmarkCovariance<Point2>(7).isApprox(expected_rl, 1e-12));

@@ -10,6 +10,7 @@
 #include <sylva/measurements.hpp>
 #include <sylva/motion/unicycle_2d.hpp>
 
+#include "filter/planar_scene.hpp"
 #include "filter_snapshot.hpp"
 #include "sylva_catch.hpp"
 
@@ -19,17 +20,15 @@ namespace unity_filter_ideal_linearization {
 
 using Filter = Ekf<Unicycle2D, Point2>;
 
-Gaussian<2> idealControlNoise() { return Gaussian<2>::sigmas(Vec<2>(0.1, 0.05)); }
-Gaussian<2> idealSensorNoise() { return Gaussian<2>::sigmas(Vec<2>(0.2, 0.05)); }
+using sylva_test::planarControlNoise;
+using sylva_test::planarSensorNoise;
 
 /// An ideal filter that has seen landmark 7 and whose estimate differs from the truth.
 struct IdealScene {
-  Filter ekf{Vec<3>(0.2, -0.1, 0.05), Mat<3, 3>::Identity() * 0.01};
+  Filter ekf = sylva_test::filterWithLandmark7(Vec<3>(0.2, -0.1, 0.05), LinearizationPoint::kIdeal);
   Vec<3> robot_truth{0.0, 0.0, 0.0};
   Vec<2> landmark_truth{4.0, 2.0};
   IdealScene() {
-    ekf.setLinearizationPoint(LinearizationPoint::kIdeal);
-    ekf.add(7, InverseRangeBearing(), Vec<2>(5.0, 0.4), idealSensorNoise());
     ekf.setIdealRobot(robot_truth);
     ekf.setIdealLandmark<Point2>(7, landmark_truth);
   }
@@ -68,11 +67,11 @@ TEST_CASE("ideal linearization: the motion is linearized about the true state") 
   Mat<3, 3> F;
   Mat<3, 2> G;
   const Vec<3> f_truth = Unicycle2D()(scene.robot_truth, u, dt, F, G);
-  ekf.predict(u, dt, idealControlNoise());
+  ekf.predict(u, dt, planarControlNoise());
   Vec<3> expected = f_truth + F * Pose2D::difference(estimate, scene.robot_truth);
   Pose2D::normalize(expected);
   CHECK(ekf.robotMean().isApprox(expected, 1e-12));
-  const Mat<3, 3> expected_rr = F * P.topLeftCorner<3, 3>() * F.transpose() + G * idealControlNoise().covariance() * G.transpose();
+  const Mat<3, 3> expected_rr = F * P.topLeftCorner<3, 3>() * F.transpose() + G * planarControlNoise().covariance() * G.transpose();
   CHECK(ekf.robotCovariance().isApprox(expected_rr, 1e-12));
   CHECK(ekf.robotLandmarkCovariance<Point2>(7).isApprox(Mat<3, 2>(F * P.block<3, 2>(0, 3)), 1e-12));
 }
@@ -81,28 +80,28 @@ TEST_CASE("ideal linearization: a true state that was not handed over is refused
   IdealScene scene;
   Filter& ekf = scene.ekf;
   // Each predict uses the robot's true state up: the update after it needs a new one.
-  ekf.predict(Vec<2>(1.0, 0.0), 0.5, idealControlNoise());
+  ekf.predict(Vec<2>(1.0, 0.0), 0.5, planarControlNoise());
   requireRejected(ekf, ErrorCode::kInvalidArgument, "setIdealRobot",
-                  [&] { ekf.update(RangeBearing(), 7, Vec<2>(4.0, 0.4), idealSensorNoise()); });
+                  [&] { ekf.update(RangeBearing(), 7, Vec<2>(4.0, 0.4), planarSensorNoise()); });
   requireRejected(ekf, ErrorCode::kInvalidArgument, "setIdealRobot",
-                  [&] { ekf.predict(Vec<2>(1.0, 0.0), 0.5, idealControlNoise()); });
+                  [&] { ekf.predict(Vec<2>(1.0, 0.0), 0.5, planarControlNoise()); });
   ekf.setIdealRobot(Vec<3>(0.5, 0.0, 0.0));
-  CHECK_NOTHROW(ekf.update(RangeBearing(), 7, Vec<2>(4.0, 0.4), idealSensorNoise()));
+  CHECK_NOTHROW(ekf.update(RangeBearing(), 7, Vec<2>(4.0, 0.4), planarSensorNoise()));
   // A new landmark has no true state until one is handed over.
-  ekf.add(8, InverseRangeBearing(), Vec<2>(3.0, -0.4), idealSensorNoise());
+  ekf.add(8, InverseRangeBearing(), Vec<2>(3.0, -0.4), planarSensorNoise());
   requireRejected(ekf, ErrorCode::kInvalidArgument, "landmark 8 (setIdealLandmark)",
-                  [&] { ekf.update(RangeBearing(), 8, Vec<2>(3.0, -0.4), idealSensorNoise()); });
+                  [&] { ekf.update(RangeBearing(), 8, Vec<2>(3.0, -0.4), planarSensorNoise()); });
   // Bad true states: unknown id, not finite.
   requireRejected(ekf, ErrorCode::kUnknownId, "99", [&] { ekf.setIdealLandmark<Point2>(99, Vec<2>(1.0, 1.0)); });
   requireRejected(ekf, ErrorCode::kNonFinite, "not finite", [&] { ekf.setIdealLandmark<Point2>(8, Vec<2>(NAN, 1.0)); });
   requireRejected(ekf, ErrorCode::kNonFinite, "not finite", [&] { ekf.setIdealRobot(Vec<3>(0.0, INFINITY, 0.0)); });
   ekf.setIdealLandmark<Point2>(8, Vec<2>(2.8, -1.1));
-  CHECK_NOTHROW(ekf.update(RangeBearing(), 8, Vec<2>(3.0, -0.4), idealSensorNoise()));
+  CHECK_NOTHROW(ekf.update(RangeBearing(), 8, Vec<2>(3.0, -0.4), planarSensorNoise()));
 }
 
 TEST_CASE("ideal linearization: a wrong landmark type is refused") {
   Ekf<Unicycle2D, Point2, TreeXYR> ekf(Vec<3>::Zero(), Mat<3, 3>::Identity() * 0.01);
-  ekf.add(1, InverseRangeBearing(), Vec<2>(5.0, 0.4), idealSensorNoise());
+  ekf.add(1, InverseRangeBearing(), Vec<2>(5.0, 0.4), planarSensorNoise());
   requireRejected(ekf, ErrorCode::kWrongLandmarkType, "Point2",
                   [&] { ekf.setIdealLandmark<TreeXYR>(1, Vec<3>(1.0, 1.0, 0.2)); });
 }
@@ -111,14 +110,14 @@ TEST_CASE("ideal linearization: about a true state equal to the estimate it is t
   Filter ideal(Vec<3>::Zero(), Mat<3, 3>::Identity() * 0.01);
   Filter textbook(Vec<3>::Zero(), Mat<3, 3>::Identity() * 0.01);
   ideal.setLinearizationPoint(LinearizationPoint::kIdeal);
-  for (Filter* f : {&ideal, &textbook}) f->add(3, InverseRangeBearing(), Vec<2>(4.0, 0.2), idealSensorNoise());
+  for (Filter* f : {&ideal, &textbook}) f->add(3, InverseRangeBearing(), Vec<2>(4.0, 0.2), planarSensorNoise());
   for (int k = 0; k < 5; ++k) {
     ideal.setIdealRobot(ideal.robotMean());
-    for (Filter* f : {&ideal, &textbook}) f->predict(Vec<2>(0.5, 0.1), 0.5, idealControlNoise());
+    for (Filter* f : {&ideal, &textbook}) f->predict(Vec<2>(0.5, 0.1), 0.5, planarControlNoise());
     ideal.setIdealRobot(ideal.robotMean());
     ideal.setIdealLandmark<Point2>(3, ideal.landmarkMean<Point2>(3));
     const Vec<2> z(4.0 - 0.25 * k, 0.2 + 0.03 * k);
-    for (Filter* f : {&ideal, &textbook}) f->update(RangeBearing(), 3, z, idealSensorNoise());
+    for (Filter* f : {&ideal, &textbook}) f->update(RangeBearing(), 3, z, planarSensorNoise());
   }
   CHECK(ideal.mean().isApprox(textbook.mean(), 1e-12));
   CHECK(ideal.covariance().isApprox(textbook.covariance(), 1e-12));
