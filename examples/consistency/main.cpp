@@ -4,7 +4,8 @@
 // Suites (--suite, comma-separated; default planar,monocular,monocular-forests):
 //   planar             the range_bearing_slam world, two laps, known association, the true
 //                      noise given to the filter; --ensembles ensembles (seeds 1..10) of
-//                      --runs runs (50). Modes: textbook, first_estimates, iterated, ideal.
+//                      --runs runs (50). Modes: textbook, first_estimates, invariant,
+//                      iterated, ideal.
 //   monocular          the default forest of forest_slam, 1 px noise, --runs noise draws (50),
 //                      for each tree pipeline (none, thesis, first_sight) and mode (textbook,
 //                      first_estimates, iterated, ideal). The filter's noise is the pipelines'
@@ -22,9 +23,11 @@
 //                      textbook and first-estimates filters, each of --tuning-accels.
 //
 // Modes: textbook = every Jacobian at the latest estimate; first_estimates = FEJ (Huang,
-// Mourikis and Roumeliotis 2010); iterated = Gauss-Newton iterations of each update (the
-// filter's default stopping rule); ideal = predict and update linearized about the true state,
-// a diagnostic that separates linearization error from model error.
+// Mourikis and Roumeliotis 2010); invariant = the right-invariant EKF (Barrau and Bonnabel
+// 2015; planar robots only: the camera declares no planar frame); iterated = Gauss-Newton
+// iterations of each update (the filter's default stopping rule); ideal = predict and update
+// linearized about the true state, a diagnostic that separates linearization error from model
+// error.
 //
 // Every entry: nees_mean (mean over steps of the ensemble-average NEES), nees_median_run (the
 // median over runs of each run's time-average NEES), nees_bounds (two-sided 95% bounds of the
@@ -85,6 +88,7 @@ struct Mode {
 };
 constexpr Mode kPlanarModes[] = {{"textbook", LinearizationPoint::kCurrentEstimate},
                                  {"first_estimates", LinearizationPoint::kFirstEstimates},
+                                 {"invariant", LinearizationPoint::kInvariant},
                                  {"iterated", LinearizationPoint::kIterated},
                                  {"ideal", LinearizationPoint::kIdeal}};
 constexpr Mode kMonocularModes[] = {{"textbook", LinearizationPoint::kCurrentEstimate},

@@ -29,7 +29,8 @@ struct Config {
   double odometry_period_s = 0.025;  ///< 40 Hz
   std::string predict = "scan";      ///< "scan": one prediction per scan, "odometry": per sample
   std::string association = "jcbb";  ///< "jcbb" or "nn"
-  /// "first-estimates" (FEJ, sylva::LinearizationPoint::kFirstEstimates) or "current"
+  /// "first-estimates" (FEJ, sylva::LinearizationPoint::kFirstEstimates), "invariant"
+  /// (sylva::LinearizationPoint::kInvariant) or "current" (the textbook EKF)
   std::string linearization = "first-estimates";
   double max_range_m = 40.0;         ///< detections farther away are not used
   double gate_probability = 0.99;    ///< individual and joint chi-square gates

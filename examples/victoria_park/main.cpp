@@ -133,8 +133,10 @@ int main(int argc, char** argv) {
   app.add_option("--duration", cfg.duration_s, "seconds of data to run (0: all)")->check(sylva_examples::positive(true))->capture_default_str();
   app.add_option("--association", cfg.association, "jcbb or nn")->check(CLI::IsMember({"jcbb", "nn"}))->capture_default_str();
   app.add_option("--linearization", cfg.linearization,
-                 "where Jacobians are taken: first-estimates (FEJ) or current (the textbook EKF)")
-      ->check(CLI::IsMember({"first-estimates", "current"}))->capture_default_str();
+                 "first-estimates (FEJ), invariant (the right-invariant EKF) or current (the textbook EKF)")
+      ->check(CLI::IsMember({"first-estimates", "invariant", "current"}))->capture_default_str();
+  app.add_option("--gate", cfg.gate_probability, "probability of the association's chi-square gates")
+      ->check(CLI::Range(0.5, 0.999999))->capture_default_str();
   app.add_option("--predict", cfg.predict, "scan (integrate odometry between scans) or odometry (predict per sample)")
       ->check(CLI::IsMember({"scan", "odometry"}))->capture_default_str();
   app.add_option("--laser-left", cfg.laser_left_m, "laser lateral offset b (m, + = left)")->check(sylva_examples::finite(false))->capture_default_str();

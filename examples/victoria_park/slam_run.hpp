@@ -187,6 +187,7 @@ RunResult runSlam(const ds::VictoriaParkData& data, const Config& cfg, const std
 
   Filter ekf(Vec<3>::Zero(), Mat<3, 3>::Zero(), car);
   if (cfg.linearization == "first-estimates") ekf.setLinearizationPoint(sylva::LinearizationPoint::kFirstEstimates);
+  if (cfg.linearization == "invariant") ekf.setLinearizationPoint(sylva::LinearizationPoint::kInvariant);
   ekf.reserve(V::Landmark::kDim * 512);
   detail::OdometryIntegrator<Filter> odometry(data.odometry, cfg, car);
 

@@ -278,26 +278,31 @@ NeesEnsemble poseNees(LinearizationPoint point, int runs, unsigned seed) {
 
 }  // namespace unity_filter_first_estimates
 
-TEST_CASE("first estimates: the robot's NEES stays consistent where the textbook EKF's grows") {
-  // Ten ensembles (seeds 1-10) of 30 runs, both filters on the same noise (paired).
+TEST_CASE("first estimates and the invariant EKF: the robot's NEES stays consistent where the textbook EKF's grows") {
+  // Ten ensembles (seeds 1-10) of 30 runs, the three filters on the same noise (paired).
   const int runs = 30, seeds = 10;
-  std::vector<double> textbook, first;
-  double textbook_sum = 0.0, first_sum = 0.0;
+  std::vector<double> textbook, first, invariant;
+  double textbook_sum = 0.0, first_sum = 0.0, invariant_sum = 0.0;
   for (unsigned seed = 1; seed <= static_cast<unsigned>(seeds); ++seed) {
     textbook.push_back(poseNees(LinearizationPoint::kCurrentEstimate, runs, seed).summary().mean);
     first.push_back(poseNees(LinearizationPoint::kFirstEstimates, runs, seed).summary().mean);
+    invariant.push_back(poseNees(LinearizationPoint::kInvariant, runs, seed).summary().mean);
     textbook_sum += textbook.back();
     first_sum += first.back();
+    invariant_sum += invariant.back();
   }
-  // Printed on every run: docs/filter.md quotes the two means.
+  // Printed on every run: docs/filter.md quotes the means.
   WARN("mean pose NEES, second lap, " << seeds << " x " << runs << " runs: textbook " << textbook_sum / seeds
-                                      << ", first estimates " << first_sum / seeds);
-  // Paired: first estimates lower on every seed (a sign test: 10 of 10 has probability 2^-10
-  // if neither filter were better).
+                                      << ", first estimates " << first_sum / seeds << ", invariant "
+                                      << invariant_sum / seeds);
+  // Paired: each consistent filter lower on every seed (a sign test: 10 of 10 has
+  // probability 2^-10 if neither filter were better).
   for (int i = 0; i < seeds; ++i) {
-    INFO("seed " << i + 1 << ": textbook " << textbook[static_cast<std::size_t>(i)] << ", first estimates "
-                 << first[static_cast<std::size_t>(i)]);
-    CHECK(first[static_cast<std::size_t>(i)] < textbook[static_cast<std::size_t>(i)]);
+    const auto at = static_cast<std::size_t>(i);
+    INFO("seed " << i + 1 << ": textbook " << textbook[at] << ", first estimates " << first[at] << ", invariant "
+                 << invariant[at]);
+    CHECK(first[at] < textbook[at]);
+    CHECK(invariant[at] < textbook[at]);
   }
   // The grand mean over all 300 runs against the 99% bounds of a 300-run average of chi2(3)
   // at one step. Averaging correlated steps as well can only lower the variance of the mean
@@ -305,5 +310,7 @@ TEST_CASE("first estimates: the robot's NEES stays consistent where the textbook
   const auto bounds = averageChiSquareBounds(3, runs * seeds, 0.99);
   CHECK(first_sum / seeds > bounds.first);
   CHECK(first_sum / seeds < bounds.second);
+  CHECK(invariant_sum / seeds > bounds.first);
+  CHECK(invariant_sum / seeds < bounds.second);
   CHECK(textbook_sum / seeds > bounds.second);
 }

@@ -103,6 +103,19 @@ Mat<Robot::kDim, Robot::kDim> firstEstimatesJacobian(const Vec<Robot::kDim>& fro
   }
 }
 
+/// The planar frame of the invariant EKF (LinearizationPoint::kInvariant): a robot declares
+/// `static constexpr int kPlanarPosition` and `kPlanarHeading` (the state indices of its world
+/// position [x, y] and of its heading), a landmark `kPlanarPosition` (its world position). The
+/// entries not named are left out of the group: the invariant error is additive in them.
+template <typename T, typename = void>
+struct HasPlanarPosition : std::false_type {};
+template <typename T>
+struct HasPlanarPosition<T, std::void_t<decltype(T::kPlanarPosition)>> : std::true_type {};
+template <typename T, typename = void>
+struct HasPlanarHeading : std::false_type {};
+template <typename T>
+struct HasPlanarHeading<T, std::void_t<decltype(T::kPlanarHeading)>> : std::true_type {};
+
 /// z_hat = h(robot, landmark) and, when requested, its two Jacobians.
 template <typename Model>
 Vec<Model::kDim> evaluate(const Model& model,

@@ -86,6 +86,24 @@ enum class LinearizationPoint {
   /// Worth most where one linearization is poor: a landmark whose depth is still a prior
   /// (inverse-depth initialization). The motion keeps the textbook Jacobian.
   kIterated,
+  /// The right-invariant EKF of planar SLAM (Barrau and Bonnabel 2015, "An EKF-SLAM
+  /// algorithm with consistency properties"): the error of the robot pose and of every
+  /// landmark position lives in the group SE_{1+k}(2), eta = chi chi_hat^-1, where the
+  /// linearized unobservable directions (a global translation and rotation) do not depend on
+  /// the estimate, so no update can gain information along them. The covariance stays stored
+  /// in the additive coordinates delta = T(x_hat) xi of the invariant error xi:
+  ///   delta_theta = xi_theta,   delta_p = xi_p + xi_theta J p_hat   (J: +90 degree rotation)
+  /// for the robot's position and each landmark's. Predict and the innovation are then the
+  /// textbook ones: for a motion that is a rigid increment in the robot frame (every Pose2D
+  /// robot) the textbook transition Jacobian is exactly T(x+) T(x)^-1, the invariant error
+  /// propagating with the identity. The update differs: its correction xi = T(x_hat)^-1 K nu
+  /// is applied through the group's exponential, p+ = R(xi_theta) p_hat + V(xi_theta) xi_p,
+  /// and the covariance is carried to the new estimate, P+ = M P M^T with
+  /// M = T(x+) T(x_hat)^-1 (a rank-2 correction, O(n^2)). Needs a robot that declares
+  /// kPlanarPosition and kPlanarHeading (every Pose2D robot) and landmarks that all declare
+  /// kPlanarPosition (Point2, TreeXYR); else setLinearizationPoint refuses it. See
+  /// docs/filter.md ("Invariant EKF").
+  kInvariant,
 };
 
 /// When the iterated update (LinearizationPoint::kIterated) stops: after `max_iterations`
@@ -178,6 +196,12 @@ class BasicEkf {
   using RobotCovariance = Mat<kRobotDim, kRobotDim>;
   using Control = Vec<kControlDim>;
 
+  /// True when the invariant EKF (LinearizationPoint::kInvariant) applies: a robot with a
+  /// planar position and heading, and landmarks that all have a planar position.
+  static constexpr bool kInvariantApplies = detail::HasPlanarPosition<Robot>::value &&
+                                            detail::HasPlanarHeading<Robot>::value &&
+                                            (detail::HasPlanarPosition<Landmarks_>::value && ...);
+
   /// True when `Landmark` is one of the filter's parametrizations.
   template <typename Landmark>
   static constexpr bool kHolds = (std::is_same_v<Landmark, Landmarks_> || ...);
@@ -227,6 +251,14 @@ class BasicEkf {
              "Ekf::setLinearizationPoint: first-estimates Jacobians need a robot with a static "
              "firstEstimatesJacobian(from, to) or firstEstimatesJacobian(from, to, dt), and the "
              "filter's robot type has none");
+    }
+    if constexpr (!kInvariantApplies) {
+      if (point == LinearizationPoint::kInvariant)
+        fail(ErrorCode::kInvalidArgument,
+             std::string("Ekf::setLinearizationPoint: the invariant EKF needs a robot that declares "
+                         "kPlanarPosition and kPlanarHeading (every Pose2D robot) and landmark types that all "
+                         "declare kPlanarPosition (Point2, TreeXYR); the filter's robot is ") +
+                 Robot::kName + " and its landmark types are" + ((std::string(" ") + Landmarks_::kName) + ...));
     }
     linearization_ = point;
   }
@@ -1006,6 +1038,7 @@ class BasicEkf {
       llt.matrixL().template solveInPlace<Eigen::OnTheRight>(K);
       auto delta = meanIncrement();
       delta.noalias() = K * nu;
+      toInvariantIncrement(delta);
       checkPosteriorDomain(delta);  // may throw; nothing of the filter is written yet
       mean_.head(n_) += delta;
       // A = (I - K H) P = P - K (P H^T)^T on the full matrix.
@@ -1041,6 +1074,7 @@ class BasicEkf {
         auto v = batch_.vector(detail::BatchWorkspace::kWhitenedInnovation, cols);
         v.noalias() = L_inv * nu;
         delta.noalias() = W * v;
+        toInvariantIncrement(delta);
         checkPosteriorDomain(delta);  // may throw; nothing of the filter is written yet
         mean_.head(n_) += delta;
         detail::subtractLowerRankUpdate(P, W);  // a tiled symmetric rank-km update
@@ -1048,6 +1082,7 @@ class BasicEkf {
         llt.matrixU().template solveInPlace<Eigen::OnTheRight>(PHt);
         const Eigen::Matrix<double, M, 1> v = llt.matrixL().solve(nu);
         delta.noalias() = PHt * v;
+        toInvariantIncrement(delta);
         checkPosteriorDomain(delta);  // may throw; nothing of the filter is written yet
         mean_.head(n_) += delta;
         // One column at a time: a fixed-size GEMV per column, one pass over half of P.
@@ -1057,7 +1092,65 @@ class BasicEkf {
         }
       }
     }
+    carryCovarianceToPosterior();
     normalizeAll();
+  }
+
+  // ---------------------------------------------------------------- invariant EKF
+
+  /// LinearizationPoint::kInvariant, before the mean is written: turns the additive
+  /// correction `delta` = K nu into the increment of the group's exponential. With
+  /// phi = delta_theta and, for the robot's position and each landmark's, xi_p = delta_p -
+  /// phi J p (the invariant error, T(x)^-1 delta), the posterior is
+  ///   p+ = R(phi) p + V(phi) xi_p,   V(phi) = [sin phi, -(1 - cos phi); 1 - cos phi, sin phi] / phi
+  /// (the exponential of SE_{1+k}(2)), and delta_p becomes p+ - p. Records c = J (p+ - p) per
+  /// position, the column of M = T(x+) T(x)^-1 = I + c e_theta^T. Grows its workspace before
+  /// the caller writes anything. A no-op in every other mode.
+  template <typename Delta>
+  void toInvariantIncrement(Delta& delta) {
+    if constexpr (kInvariantApplies) {
+      if (linearization_ != LinearizationPoint::kInvariant) return;
+      if (invariant_.size() < 2 * static_cast<Eigen::Index>(n_)) invariant_.resize(2 * static_cast<Eigen::Index>(n_));
+      auto c = invariant_.head(n_);
+      c.setZero();
+      const double phi = delta[Robot::kPlanarHeading];
+      const double cos_phi = std::cos(phi);
+      const double sin_phi = std::sin(phi);
+      // sin(phi) / phi and (1 - cos(phi)) / phi, by their series near 0.
+      const bool small = std::abs(phi) < 1e-6;
+      const double a = small ? 1.0 - phi * phi / 6.0 : sin_phi / phi;
+      const double b = small ? 0.5 * phi : (1.0 - cos_phi) / phi;
+      const auto retract = [&](int o) {
+        const Vec<2> p = mean_.template segment<2>(o);
+        const Vec<2> xi(delta[o] + phi * p.y(), delta[o + 1] - phi * p.x());  // delta_p - phi J p
+        const Vec<2> moved(cos_phi * p.x() - sin_phi * p.y() + a * xi.x() - b * xi.y(),
+                           sin_phi * p.x() + cos_phi * p.y() + b * xi.x() + a * xi.y());
+        const Vec<2> step = moved - p;
+        delta.template segment<2>(o) = step;
+        c.template segment<2>(o) = Vec<2>(-step.y(), step.x());
+      };
+      retract(Robot::kPlanarPosition);
+      constexpr int kPositions[] = {Landmarks_::kPlanarPosition...};
+      for (const LandmarkSlot& s : slots_) retract(s.offset + kPositions[s.type_index]);
+    } else {
+      (void)delta;
+    }
+  }
+
+  /// LinearizationPoint::kInvariant, after the covariance update: P <- M P M^T with
+  /// M = I + c e_theta^T (toInvariantIncrement), i.e. P + c a^T + a c^T for
+  /// a = P e_theta + (P_theta,theta / 2) c, on the lower triangle. O(n^2), no allocation.
+  void carryCovarianceToPosterior() {
+    if constexpr (kInvariantApplies) {
+      if (linearization_ != LinearizationPoint::kInvariant) return;
+      constexpr int h = Robot::kPlanarHeading;
+      const auto c = invariant_.head(n_);
+      auto a = invariant_.segment(n_, n_);
+      for (int i = 0; i < n_; ++i) a[i] = lowerAt(i, h);
+      a += (0.5 * cov_(h, h)) * c;
+      for (int j = 0; j < n_; ++j)
+        cov_.col(j).segment(j, n_ - j) += c.tail(n_ - j) * a[j] + a.tail(n_ - j) * c[j];
+    }
   }
 
   /// P_rr <- F P_rr F^T + added, P_mr <- P_mr F^T: the robot block and its cross-covariances
@@ -1155,6 +1248,7 @@ class BasicEkf {
   Eigen::VectorXd workspace_a_;
   Eigen::VectorXd workspace_b_;
   Eigen::VectorXd delta_;
+  Eigen::VectorXd invariant_;  ///< c and a of the invariant EKF's covariance transport (2n)
   detail::BatchWorkspace batch_;
 };
 

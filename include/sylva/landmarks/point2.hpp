@@ -10,6 +10,7 @@ namespace sylva {
 struct Point2 {
   static constexpr int kDim = 2;
   static constexpr const char* kName = "Point2";
+  static constexpr int kPlanarPosition = 0;  ///< [x, y] in the world (LinearizationPoint::kInvariant)
   using Mean = Vec<2>;
 };
 

@@ -14,6 +14,8 @@ namespace sylva {
 struct TreeXYR {
   static constexpr int kDim = 3;  ///< [x_m, y_m, radius_m]
   static constexpr const char* kName = "TreeXYR";
+  /// [x_m, y_m] in the world (LinearizationPoint::kInvariant); the radius is frame-free.
+  static constexpr int kPlanarPosition = 0;
   using Mean = Vec<3>;
 
   /// nullptr for r > 0, else the reason (see detail::HasDomain).

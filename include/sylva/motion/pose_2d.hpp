@@ -15,6 +15,8 @@ namespace sylva {
 
 struct Pose2D {
   static constexpr int kDim = 3;  ///< [x, y, theta]
+  static constexpr int kPlanarPosition = 0;  ///< [x, y] in the world (LinearizationPoint::kInvariant)
+  static constexpr int kPlanarHeading = 2;   ///< theta
   using State = Vec<3>;
 
   /// Brings a state back to its canonical range (theta in (-pi, pi]).
