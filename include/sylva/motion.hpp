@@ -1,6 +1,7 @@
 #pragma once
 // IWYU pragma: begin_exports
 #include "sylva/motion/ackermann_2d.hpp"
+#include "sylva/motion/ackermann_2d_with_bias.hpp"
 #include "sylva/motion/constant_velocity_3d.hpp"
 #include "sylva/motion/odometry_2d.hpp"
 #include "sylva/motion/pose_2d.hpp"

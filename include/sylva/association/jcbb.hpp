@@ -77,14 +77,14 @@ namespace sylva {
 namespace detail {
 
 /// The branch-and-bound search over one individual compatibility table.
-template <class Model>
+template <class Model, int RobotDim>
 class JcbbSearch {
  public:
   static constexpr int kDim = Model::kDim;
 
   template <class EkfT>
   JcbbSearch(const EkfT& ekf,
-             const IndividualCompatibility<Model>& ic,
+             const IndividualCompatibility<Model, RobotDim>& ic,
              const Mat<kDim, kDim>& R,
              double gate_probability)
       : ic_(ic), m_(ic.measurement_count), R_(R) {
@@ -202,7 +202,7 @@ class JcbbSearch {
     return true;
   }
 
-  const IndividualCompatibility<Model>& ic_;
+  const IndividualCompatibility<Model, RobotDim>& ic_;
   int m_;
   Mat<kDim, kDim> R_;
   std::vector<int> relevant_;  ///< candidate -> block index in cross_, -1 if it never gates
@@ -239,9 +239,8 @@ std::vector<std::optional<Id>> associateJcbb(const EkfT& ekf,
   std::vector<std::optional<Id>> pairing(measurements.size(), std::nullopt);
   if (measurements.empty() || candidates.empty()) return pairing;
 
-  const detail::IndividualCompatibility<Model> ic = detail::individualCompatibility(
-      ekf, model, measurements, noise, candidates, gate_probability, kWho);
-  detail::JcbbSearch<Model> search(ekf, ic, noise.covariance(), gate_probability);
+  const auto ic = detail::individualCompatibility(ekf, model, measurements, noise, candidates, gate_probability, kWho);
+  detail::JcbbSearch<Model, EkfT::kRobotDim> search(ekf, ic, noise.covariance(), gate_probability);
   const std::vector<int>& best = search.run();
   for (std::size_t i = 0; i < best.size(); ++i)
     if (best[i] >= 0) pairing[i] = candidates[static_cast<std::size_t>(best[i])];

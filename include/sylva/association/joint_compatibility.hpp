@@ -58,7 +58,7 @@ double jointNis(const EkfT& ekf,
   }
   detail::checkMeasurements(measurements, kWho);
 
-  std::vector<Linearization<Model>> lins;
+  std::vector<Linearization<Model, EkfT::kRobotDim>> lins;
   std::vector<std::size_t> paired;
   for (std::size_t i = 0; i < pairing.size(); ++i) {
     if (!pairing[i]) continue;

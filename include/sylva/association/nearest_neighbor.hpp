@@ -62,8 +62,7 @@ std::vector<std::optional<Id>> associateNearestNeighbor(
   std::vector<std::optional<Id>> pairing(measurements.size(), std::nullopt);
   if (measurements.empty() || candidates.empty()) return pairing;
 
-  const detail::IndividualCompatibility<Model> ic = detail::individualCompatibility(
-      ekf, model, measurements, noise, candidates, gate_probability, kWho);
+  const auto ic = detail::individualCompatibility(ekf, model, measurements, noise, candidates, gate_probability, kWho);
 
   struct Gated {
     double nis;

@@ -15,13 +15,38 @@
 
 namespace sylva::detail {
 
-/// A model written for `ModelRobot` serves a filter whose robot is `Robot` when the two are
+/// A model written for `ModelRobot` sees a filter's robot `Robot` directly when the two are
 /// the same type or `ModelRobot` is a base of `Robot`: `RangeBearing` is written for
 /// `Pose2D`, so it serves `Unicycle2D`, `Odometry2D` and any robot whose state is the
 /// planar pose. A model written for a robot *derived* from the filter's does not fit.
 template <typename ModelRobot, typename Robot>
-inline constexpr bool kRobotFits =
+inline constexpr bool kRobotFitsDirectly =
     std::is_same_v<ModelRobot, Robot> || std::is_base_of_v<ModelRobot, Robot>;
+
+/// A robot whose state holds more than a pose (biases, velocities) exposes the pose as a view:
+/// `using Pose = Pose2D;` (the pose's own type) and
+/// `static Vec<Pose::kDim> pose(const Vec<kDim>& x, JacobianRef<Pose::kDim, kDim> J = {})`.
+/// Every model written for the pose type (or a base of it) then serves the robot: the filter
+/// evaluates the model at pose(x) and chains the Jacobians.
+template <typename Robot, typename = void>
+struct HasPoseView : std::false_type {};
+template <typename Robot>
+struct HasPoseView<Robot, std::void_t<typename Robot::Pose>> : std::true_type {};
+
+template <typename ModelRobot, typename Robot>
+constexpr bool robotFitsThroughPose() {
+  if constexpr (HasPoseView<Robot>::value) {
+    return kRobotFitsDirectly<ModelRobot, typename Robot::Pose>;
+  } else {
+    return false;
+  }
+}
+
+/// A model written for `ModelRobot` serves a filter whose robot is `Robot`: directly, or
+/// through the robot's pose view.
+template <typename ModelRobot, typename Robot>
+inline constexpr bool kRobotFits =
+    kRobotFitsDirectly<ModelRobot, Robot> || robotFitsThroughPose<ModelRobot, Robot>();
 
 template <typename Model, typename = void>
 struct HasAnalyticJacobians : std::false_type {};
@@ -127,6 +152,50 @@ Vec<Model::kDim> evaluate(const Model& model,
     return model(robot, landmark, J_z_x, J_z_l);
   } else {
     return AutoDiff<Model>(model)(robot, landmark, J_z_x, J_z_l);
+  }
+}
+
+/// z_hat = h(view of x, landmark) for a filter whose robot is `Robot`: the model sees the
+/// robot state itself when its robot type fits directly, else the pose view Robot::pose(x),
+/// and J_z_x = J_z_pose J_pose_x.
+template <typename Robot, typename Model>
+Vec<Model::kDim> evaluateOn(const Model& model,
+                            const Vec<Robot::kDim>& x,
+                            const Vec<Model::Landmark::kDim>& landmark,
+                            JacobianRef<Model::kDim, Robot::kDim> J_z_x,
+                            JacobianRef<Model::kDim, Model::Landmark::kDim> J_z_l) {
+  if constexpr (kRobotFitsDirectly<typename Model::Robot, Robot>) {
+    return evaluate(model, x, landmark, J_z_x, J_z_l);
+  } else {
+    constexpr int P = Model::Robot::kDim;
+    if (!J_z_x) return evaluate(model, Vec<P>(Robot::pose(x)), landmark, {}, J_z_l);
+    Mat<P, Robot::kDim> J_pose;
+    const Vec<P> pose = Robot::pose(x, J_pose);
+    Mat<Model::kDim, P> J_z_pose;
+    const Vec<Model::kDim> z = evaluate(model, pose, landmark, J_z_pose, J_z_l);
+    *J_z_x = J_z_pose * J_pose;
+    return z;
+  }
+}
+
+/// A new landmark from its first measurement, l = g(view of x, z), for a filter whose robot
+/// is `Robot`; J_l_x is chained through the pose view as in evaluateOn.
+template <typename Robot, typename InverseModel>
+Vec<InverseModel::Landmark::kDim> initializeOn(const InverseModel& inverse,
+                                              const Vec<Robot::kDim>& x,
+                                              const Vec<InverseModel::kMeasurementDim>& z,
+                                              Mat<InverseModel::Landmark::kDim, Robot::kDim>& J_l_x,
+                                              Mat<InverseModel::Landmark::kDim, InverseModel::kMeasurementDim>& J_l_z) {
+  if constexpr (kRobotFitsDirectly<typename InverseModel::Robot, Robot>) {
+    return inverse(x, z, J_l_x, J_l_z);
+  } else {
+    constexpr int P = InverseModel::Robot::kDim;
+    Mat<P, Robot::kDim> J_pose;
+    const Vec<P> pose = Robot::pose(x, J_pose);
+    Mat<InverseModel::Landmark::kDim, P> J_l_pose;
+    const Vec<InverseModel::Landmark::kDim> l = inverse(pose, z, J_l_pose, J_l_z);
+    J_l_x = J_l_pose * J_pose;
+    return l;
   }
 }
 

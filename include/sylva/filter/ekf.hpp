@@ -414,7 +414,7 @@ class BasicEkf {
       update(model, one);
       return prior;
     }
-    const Linearization<Model> lin = linearize(model, id);
+    const Linearization<Model, kRobotDim> lin = linearize(model, id);
     const Vec<M> nu = detail::residual(model, z, lin.z_hat);
     if (!nu.allFinite()) fail(ErrorCode::kNonFinite, nameOf<Model>() + ": innovation is not finite");
 
@@ -472,7 +472,7 @@ class BasicEkf {
       if (!obs.z.allFinite())
         fail(ErrorCode::kNonFinite, nameOf<Model>() + ": measurement " + std::to_string(i) +
                                         " of the batch is not finite");
-      const Linearization<Model> lin = linearize(model, obs.id);
+      const Linearization<Model, kRobotDim> lin = linearize(model, obs.id);
       lins.store(i, lin);
       nu.template segment<M>(i * M) = detail::residual(model, obs.z, lin.z_hat);
       ++i;
@@ -540,16 +540,16 @@ class BasicEkf {
   /// h(x) at the current estimate and the two non-zero blocks of H for landmark `id`, at
   /// the filter's linearization point (`setLinearizationPoint`).
   template <typename Model>
-  Linearization<Model> linearize(const Model& model, Id id) const {
+  Linearization<Model, kRobotDim> linearize(const Model& model, Id id) const {
     checkModel<Model>();
     constexpr int L = Model::Landmark::kDim;
     const LandmarkSlot& s = typedSlot<typename Model::Landmark>(id, Model::kName);
-    Linearization<Model> lin;
+    Linearization<Model, kRobotDim> lin;
     lin.landmark_offset = s.offset;
     const Vec<L> landmark = mean_.template segment<L>(s.offset);
     if (linearization_ == LinearizationPoint::kFirstEstimates) {
-      lin.z_hat = detail::evaluate(model, robotMean(), landmark, {}, {});
-      detail::evaluate(model, RobotState(first_.template head<kRobotDim>()),
+      lin.z_hat = detail::evaluateOn<Robot>(model, robotMean(), landmark, {}, {});
+      detail::evaluateOn<Robot>(model, RobotState(first_.template head<kRobotDim>()),
                        Vec<L>(first_.template segment<L>(s.offset)), lin.J_z_x, lin.J_z_l);
     } else if (linearization_ == LinearizationPoint::kIdeal) {
       const Vec<L> ideal_landmark = ideal_.template segment<L>(s.offset);
@@ -559,11 +559,11 @@ class BasicEkf {
                  std::to_string(id) + " (setIdealLandmark), and none was handed over since it entered the state");
       const RobotState ideal_robot = idealRobot(Model::kName);
       // The first-order prediction about the truth: the filter of the linearized system.
-      lin.z_hat = detail::evaluate(model, ideal_robot, ideal_landmark, lin.J_z_x, lin.J_z_l) +
+      lin.z_hat = detail::evaluateOn<Robot>(model, ideal_robot, ideal_landmark, lin.J_z_x, lin.J_z_l) +
                   lin.J_z_x * detail::difference<Robot>(robotMean(), ideal_robot) +
                   lin.J_z_l * detail::difference<typename Model::Landmark>(landmark, ideal_landmark);
     } else {
-      lin.z_hat = detail::evaluate(model, robotMean(), landmark, lin.J_z_x, lin.J_z_l);
+      lin.z_hat = detail::evaluateOn<Robot>(model, robotMean(), landmark, lin.J_z_x, lin.J_z_l);
     }
     if (!lin.z_hat.allFinite() || !lin.J_z_x.allFinite() || !lin.J_z_l.allFinite())
       fail(ErrorCode::kNonFinite, nameOf<Model>() + ": prediction or Jacobian is not finite for landmark " +
@@ -573,8 +573,8 @@ class BasicEkf {
 
   /// H_a P H_b^T for two linearizations (the cross term of a joint innovation covariance).
   template <typename ModelA, typename ModelB>
-  Mat<ModelA::kDim, ModelB::kDim> crossCovariance(const Linearization<ModelA>& a,
-                                                   const Linearization<ModelB>& b) const {
+  Mat<ModelA::kDim, ModelB::kDim> crossCovariance(const Linearization<ModelA, kRobotDim>& a,
+                                                   const Linearization<ModelB, kRobotDim>& b) const {
     constexpr int La = ModelA::Landmark::kDim;
     constexpr int Lb = ModelB::Landmark::kDim;
     const auto P_rr = symmetricBlock<kRobotDim, kRobotDim>(0, 0);
@@ -592,7 +592,7 @@ class BasicEkf {
                                      Id id,
                                      const Vec<Model::kDim>& z,
                                      const Gaussian<Model::kDim>& noise) const {
-    const Linearization<Model> lin = linearize(model, id);
+    const Linearization<Model, kRobotDim> lin = linearize(model, id);
     Innovation<Model::kDim> result;
     result.nu = detail::residual(model, z, lin.z_hat);
     result.S = crossCovariance(lin, lin) + noise.covariance();
@@ -624,7 +624,7 @@ class BasicEkf {
     if (!z.allFinite()) fail(ErrorCode::kNonFinite, std::string(InverseModel::kName) + ": measurement is not finite");
     Mat<L, kRobotDim> J_l_x;
     Mat<L, Z> J_l_z;
-    const Vec<L> l = inverse(robotMean(), z, J_l_x, J_l_z);
+    const Vec<L> l = detail::initializeOn<Robot>(inverse, robotMean(), z, J_l_x, J_l_z);
     if (!l.allFinite() || !J_l_x.allFinite() || !J_l_z.allFinite())
       fail(ErrorCode::kNonFinite, std::string(InverseModel::kName) + ": initialization is not finite");
     if constexpr (detail::HasDomain<Landmark>::value) {
@@ -761,7 +761,7 @@ class BasicEkf {
       int i = 0;
       for (const Observation<Model>& obs : observations) {
         const Vec<L> landmark = landmark_iterates.template segment<L>(i * L);
-        const Linearization<Model> lin = linearizeAt(model, obs.id, robot_iterate, landmark);
+        const Linearization<Model, kRobotDim> lin = linearizeAt(model, obs.id, robot_iterate, landmark);
         lins.store(i, lin);
         const Vec<L> prior = mean_.template segment<L>(lin.landmark_offset);
         nu.template segment<M>(i * M) = detail::residual(model, obs.z, lin.z_hat) +
@@ -777,11 +777,11 @@ class BasicEkf {
 
   /// h and its two Jacobians at the given robot and landmark state.
   template <typename Model>
-  Linearization<Model> linearizeAt(const Model& model, Id id, const RobotState& robot,
+  Linearization<Model, kRobotDim> linearizeAt(const Model& model, Id id, const RobotState& robot,
                                    const Vec<Model::Landmark::kDim>& landmark) const {
-    Linearization<Model> lin;
+    Linearization<Model, kRobotDim> lin;
     lin.landmark_offset = typedSlot<typename Model::Landmark>(id, Model::kName).offset;
-    lin.z_hat = detail::evaluate(model, robot, landmark, lin.J_z_x, lin.J_z_l);
+    lin.z_hat = detail::evaluateOn<Robot>(model, robot, landmark, lin.J_z_x, lin.J_z_l);
     if (!lin.z_hat.allFinite() || !lin.J_z_x.allFinite() || !lin.J_z_l.allFinite())
       fail(ErrorCode::kNonFinite, nameOf<Model>() + ": prediction or Jacobian is not finite for landmark " +
                                       std::to_string(id) + " at an iterate");

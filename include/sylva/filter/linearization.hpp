@@ -10,10 +10,12 @@
 namespace sylva {
 
 /// h(x) at the current estimate, the two non-zero blocks of H and where they sit in the state.
-template <typename Model>
+/// `RobotDim` is the filter's robot block, which is larger than the model's robot when the
+/// model sees the robot through its pose view (a car with bias states, say).
+template <typename Model, int RobotDim = Model::Robot::kDim>
 struct Linearization {
   static constexpr int kDim = Model::kDim;
-  static constexpr int kRobotDim = Model::Robot::kDim;
+  static constexpr int kRobotDim = RobotDim;
   static constexpr int kLandmarkDim = Model::Landmark::kDim;
   Vec<kDim> z_hat;
   Mat<kDim, kRobotDim> J_z_x;     ///< w.r.t. the robot block (offset 0)

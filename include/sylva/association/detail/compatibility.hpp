@@ -73,13 +73,13 @@ void checkCandidates(const EkfT& ekf, const std::vector<Id>& candidates, const c
 }
 
 /// The individual compatibility of every (measurement, candidate) pair.
-template <typename Model>
+template <typename Model, int RobotDim = Model::Robot::kDim>
 struct IndividualCompatibility {
   static constexpr int kDim = Model::kDim;
   int measurement_count = 0;
   int candidate_count = 0;
   double gate = 0.0;                         ///< chi2(kDim, p)
-  std::vector<Linearization<Model>> lins;    ///< one per candidate
+  std::vector<Linearization<Model, RobotDim>> lins;  ///< one per candidate
   std::vector<Vec<kDim>> residuals;          ///< nu_ij at [i * candidate_count + j]
   Eigen::MatrixXd nis;                       ///< D^2_ij, measurement_count x candidate_count
   std::vector<std::vector<int>> compatible;  ///< per measurement: gated j by increasing D^2
@@ -93,7 +93,7 @@ struct IndividualCompatibility {
 /// type makes `ekf.linearize` throw kWrongLandmarkType; an S_j that is not positive
 /// definite throws kNotPositiveDefinite.
 template <typename EkfT, typename Model>
-IndividualCompatibility<Model> individualCompatibility(const EkfT& ekf,
+IndividualCompatibility<Model, EkfT::kRobotDim> individualCompatibility(const EkfT& ekf,
                                                        const Model& model,
                                                        const std::vector<Vec<Model::kDim>>& z,
                                                        const Gaussian<Model::kDim>& noise,
@@ -101,7 +101,7 @@ IndividualCompatibility<Model> individualCompatibility(const EkfT& ekf,
                                                        double gate_probability,
                                                        const char* who) {
   constexpr int M = Model::kDim;
-  IndividualCompatibility<Model> ic;
+  IndividualCompatibility<Model, EkfT::kRobotDim> ic;
   ic.measurement_count = static_cast<int>(z.size());
   ic.candidate_count = static_cast<int>(candidates.size());
   ic.gate = chiSquareGate(M, gate_probability);
@@ -112,7 +112,7 @@ IndividualCompatibility<Model> individualCompatibility(const EkfT& ekf,
 
   for (int j = 0; j < ic.candidate_count; ++j) {
     ic.lins.push_back(ekf.linearize(model, candidates[static_cast<std::size_t>(j)]));
-    const Linearization<Model>& lin = ic.lins.back();
+    const Linearization<Model, EkfT::kRobotDim>& lin = ic.lins.back();
     Mat<M, M> S = ekf.crossCovariance(lin, lin) + noise.covariance();
     S = (0.5 * (S + S.transpose())).eval();
     const Eigen::LLT<Mat<M, M>> llt(S);
