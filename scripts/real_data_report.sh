@@ -6,7 +6,9 @@
 #      the benchmarks: the Victoria Park run time is one of the issue's targets),
 #   2. victoria_park --json --robustness (both variants, the 81-setting noise study on
 #      THREADS threads) and utias --json, each writing its pictures into docs/images,
-#   3. scripts/real_data_report.py, which writes the page from the two JSON files.
+#   3. scripts/real_data_report.py, which writes the page from the two JSON files,
+#   4. utias --leave-one-out --json and scripts/utias_report.py, which rewrite the generated
+#      tables of docs/examples/utias.md (leave-one-robot-out, the grid's ranking, the results).
 # The JSON stays in BUILD_DIR. The whole run takes a few minutes on 2 cores.
 #
 # Usage: bash scripts/real_data_report.sh [BUILD_DIR]
@@ -58,3 +60,9 @@ python3 "${root}/scripts/real_data_report.py" --victoria-park "${build_dir}/vict
   --utias "${build_dir}/utias.json" --commands "${commands}" --context "${context}" \
   --out "${root}/docs/results-real-data.md"
 echo "==> wrote docs/results-real-data.md" >&2
+echo "==> utias --leave-one-out" >&2
+"${build_dir}/examples/utias/utias" --data "${data_dir}/utias-mrclam/MRCLAM_Dataset7" --leave-one-out --json \
+  > "${build_dir}/utias_loro.json"
+python3 "${root}/scripts/utias_report.py" --run "${build_dir}/utias.json" --loro "${build_dir}/utias_loro.json" \
+  --doc "${root}/docs/examples/utias.md"
+echo "==> updated the generated tables of docs/examples/utias.md" >&2

@@ -12,6 +12,12 @@
 //   landmark_aligned_rmse_m  RMS of |T(l_est) - l_true| over the mapped landmarks;
 //   nees_mean        mean over the samples of the 3-dof pose NEES e^T P^-1 e (eq. 2.43),
 //                    e = Unicycle2D::difference(x_true, x_est), in the Vicon frame.
+//
+// Only samples whose time the ground truth covers (GroundTruth::covers: within its span, not
+// in a gap longer than its largest gap) are scored; `samples_scored` counts them, and when
+// the truth ends before the run does, `truthEndsEarly()` says so and `last_scored_s` is the
+// time of the last scored sample (the program prints a note). The landmark scores use the
+// final map: the landmarks' truth does not end.
 
 #include <cmath>
 #include <map>
@@ -39,8 +45,22 @@ struct Scores {
   Vec<2> alignment_translation_m = Vec<2>::Zero();
   int landmarks_mapped = 0;
   int subjects_mapped = 0;  ///< distinct true landmarks among them
-  long samples = 0;
+  long samples = 0;         ///< samples of the run
+  long samples_scored = 0;  ///< of them, covered by the ground truth (the trajectory scores use these)
+  long samples_after_truth = 0;  ///< of them, after the truth's last sample
+  double run_end_s = 0.0;      ///< time of the run's last sample
+  double truth_end_s = 0.0;    ///< time of the last ground-truth sample
+  double last_scored_s = 0.0;  ///< time of the last scored sample
   sylva::eval::Rigid2 alignment;
+
+  double truth_max_gap_s = 0.0;  ///< GroundTruth::maxGap() of the truth scored against
+
+  /// The ground truth stops more than its largest gap (1 s) before the run's last sample: the
+  /// trajectory is scored until then. (A shorter tail, such as the last command's 0.2 s delay
+  /// after the truth's last sample in Dataset 7, is left out of the scores without a note.)
+  bool truthEndsEarly() const { return samples > 0 && run_end_s - truth_end_s > truth_max_gap_s; }
+  /// Samples left out inside the truth's span (gaps longer than GroundTruth::maxGap()).
+  long samplesInGaps() const { return samples - samples_scored - samples_after_truth; }
 };
 
 inline Scores score(const RunResult& run,
@@ -73,25 +93,33 @@ inline Scores score(const RunResult& run,
   }
 
   double e2 = 0.0, a2 = 0.0, d2 = 0.0, nees_sum = 0.0;
-  long nees_count = 0;
+  const Sample* last = nullptr;
+  s.truth_end_s = gt.end();
+  s.truth_max_gap_s = gt.maxGap();
   for (std::size_t k = 0; k < run.samples.size(); ++k) {
     const Sample& smp = run.samples[k];
+    if (!gt.covers(smp.time_s)) {
+      s.samples_after_truth += smp.time_s > gt.end() ? 1 : 0;
+      continue;
+    }
     const Vec<3> x = gt.at(smp.time_s);
     e2 += (smp.pose.head<2>() - x.head<2>()).squaredNorm();
     a2 += (s.alignment(smp.pose.head<2>()) - x.head<2>()).squaredNorm();
     d2 += (run.dead_reckoning[k].head<2>() - x.head<2>()).squaredNorm();
     nees_sum += sylva::nees(sylva::Unicycle2D::difference(x, smp.pose), smp.covariance);
-    ++nees_count;
+    ++s.samples_scored;
+    last = &smp;
   }
   s.samples = static_cast<long>(run.samples.size());
-  if (s.samples > 0) {
-    const double n = static_cast<double>(s.samples);
+  if (s.samples > 0) s.run_end_s = run.samples.back().time_s;
+  if (last != nullptr) {
+    const double n = static_cast<double>(s.samples_scored);
     s.rmse_m = std::sqrt(e2 / n);
     s.aligned_rmse_m = std::sqrt(a2 / n);
     s.dead_reckoning_rmse_m = std::sqrt(d2 / n);
-    s.nees_mean = nees_sum / static_cast<double>(nees_count);
-    const Sample& last = run.samples.back();
-    s.final_error_m = (last.pose.head<2>() - gt.at(last.time_s).head<2>()).norm();
+    s.nees_mean = nees_sum / n;
+    s.last_scored_s = last->time_s;
+    s.final_error_m = (last->pose.head<2>() - gt.at(last->time_s).head<2>()).norm();
   }
   return s;
 }

@@ -15,7 +15,11 @@
 // trajectory RMS in the Vicon frame and after the rigid alignment of the map, landmark RMS
 // after that alignment, mean pose NEES, and the association statistics of JCBB.
 //
-// --noise-study prints the statistics the noise configuration is read off (residuals.hpp).
+// --noise-study prints the statistics the noise configuration is read off (residuals.hpp);
+// --study the grid of noise settings (selection.hpp); --leave-one-out fits the delay, the
+// command calibration and the setting on four robots and scores the fifth (fit.hpp). Every
+// output is labelled with the recording's name (the folder of --data), and a robot is scored
+// only where its ground truth exists (evaluation.hpp).
 // Run `utias --help` for the flags.
 
 #include <algorithm>
@@ -36,7 +40,9 @@
 #include "../common/cli_checks.hpp"
 #include "../range_bearing_slam/svg_map.hpp"
 #include "evaluation.hpp"
+#include "fit.hpp"
 #include "residuals.hpp"
+#include "selection.hpp"
 #include "slam_run.hpp"
 
 #ifndef UTIAS_DEFAULT_DATA
@@ -55,6 +61,7 @@ struct Options {
   bool json = false;
   bool noise_study = false;
   bool study = false;
+  bool leave_one_out = false;
   std::string svg_prefix;
   utias::NoiseConfig noise;
 };
@@ -67,6 +74,15 @@ struct RobotReport {
   long robot_observations = 0;
   double duration_s = 0.0;
 };
+
+/// The recording's name: the last component of the --data folder (e.g. "MRCLAM_Dataset7").
+std::string recordingName(const std::string& folder) {
+  std::filesystem::path p = std::filesystem::path(folder).lexically_normal();
+  if (p.filename().empty()) p = p.parent_path();  // "dir/" -> "dir"
+  const std::string name = p.filename().string();
+  return name.empty() || name == "." || name == ".." ? std::filesystem::absolute(p).lexically_normal().filename().string()
+                                                     : name;
+}
 
 std::string fixed(double v, int digits) {
   std::ostringstream os;
@@ -134,6 +150,10 @@ json robotJson(const RobotReport& r) {
               {"skipped", {{"unknown_barcode", r.unknown_barcodes}, {"robot_observations", r.robot_observations}}},
               {"duration_s", r4(r.duration_s)},
               {"samples", k.samples},
+              {"samples_scored", k.samples_scored},
+              {"truth_end_s", r4(k.truth_end_s)},
+              {"scored_until_s", r4(k.last_scored_s)},
+              {"truth_ends_early", k.truthEndsEarly()},
               {"runtime_known_s", r4(r.known.runtime_s)},
               {"runtime_jcbb_s", r4(r.jcbb.runtime_s)}};
 }
@@ -148,6 +168,7 @@ std::vector<Vec<2>> thinned(std::size_t n, std::size_t stride, Get get) {
 }
 
 void writeSvg(const std::string& file,
+              const std::string& recording,
               const RobotReport& r,
               const utias::GroundTruth& gt,
               const std::vector<sylva::datasets::UtiasLandmark>& truth) {
@@ -170,7 +191,7 @@ void writeSvg(const std::string& file,
   m.estimated_final_pose = run.samples.back().pose;
   m.final_position_covariance = run.samples.back().covariance.topLeftCorner<2, 2>();
   m.sensor_range_fov = Vec<2>(8.4, 0.6);
-  m.title = "UTIAS MRCLAM Dataset 7, robot " + std::to_string(r.robot) + ": EKF-SLAM with known correspondences";
+  m.title = "UTIAS " + recording + ", robot " + std::to_string(r.robot) + ": EKF-SLAM with known correspondences";
   const auto& k = r.known_scores;
   const auto& j = r.jcbb_scores;
   m.subtitle_lines = {
@@ -251,48 +272,180 @@ int noiseStudy(const Options& o, const sylva::datasets::UtiasDataset& data) {
   return 0;
 }
 
-/// The study behind the default configuration: the known-correspondence run of every robot
-/// for each setting of a small grid of global scales around the configuration given (the same
-/// setting for all robots), one line per setting with the figures and how many of its
-/// targets the setting meets. Deterministic; the grid is fixed here and documented in
-/// docs/examples/utias.md.
+/// The note printed when a robot's ground truth does not cover its whole run (empty if it does).
+std::string coverageNote(int robot, const utias::Scores& s) {
+  std::string note;
+  if (s.truthEndsEarly())
+    note = "robot " + std::to_string(robot) + ": ground truth ends at t = " + fixed(s.truth_end_s, 1) +
+           " s, scored until then (" + std::to_string(s.samples_after_truth) + " of " + std::to_string(s.samples) +
+           " samples after it not scored; the run ends at t = " + fixed(s.run_end_s, 1) + " s)";
+  if (s.samplesInGaps() > 0)
+    note += (note.empty() ? "robot " + std::to_string(robot) + ": " : "; ") + std::to_string(s.samplesInGaps()) +
+            " samples in gaps of the ground truth longer than " + fixed(utias::GroundTruth::kDefaultMaxGapS, 1) +
+            " s not scored";
+  return note;
+}
+
+json summaryJson(const utias::TargetSummary& t) {
+  return json{{"robots", t.robots},
+              {"aligned_rmse_mean_m", r4(t.aligned_mean_m)},
+              {"aligned_rmse_worst_m", r4(t.aligned_worst_m)},
+              {"vicon_rmse_mean_m", r4(t.vicon_mean_m)},
+              {"vicon_rmse_worst_m", r4(t.vicon_worst_m)},
+              {"landmark_aligned_rmse_worst_m", r4(t.landmark_worst_m)},
+              {"nees_min", r4(t.nees_min)},
+              {"nees_max", r4(t.nees_max)},
+              {"targets_met", t.met()},
+              {"targets_met_each",
+               {{"aligned_mean", t.alignedMeanMet()},
+                {"aligned_worst", t.alignedWorstMet()},
+                {"vicon_mean", t.viconMeanMet()},
+                {"vicon_worst", t.viconWorstMet()},
+                {"landmark_worst", t.landmarkMet()},
+                {"nees_band", t.neesMet()}}},
+              {"smallest_margin", r4(t.smallestMargin())}};
+}
+
+json settingJson(const utias::GridSetting& g) {
+  return json{{"process", g.process}, {"range", g.range}, {"bearing_rad", g.bearing_rad}};
+}
+
+json commandFitJson(const utias::CommandFit& c) {
+  return json{{"command_delay_s", c.delay_s},   {"v_gain", c.v_gain},         {"v_turn_loss_m_per_rad", c.v_turn_loss},
+              {"omega_gain", c.omega_gain},     {"omega_bias_radps", c.omega_bias}, {"windows", c.windows}};
+}
+
+std::string settingText(const utias::GridSetting& g) {
+  std::ostringstream os;
+  os << g.process << " / " << g.range << " / " << g.bearing_rad;
+  return os.str();
+}
+
+std::string summaryText(const utias::TargetSummary& t) {
+  return fixed(t.vicon_mean_m, 3) + " " + fixed(t.vicon_worst_m, 3) + " | " + fixed(t.aligned_mean_m, 3) + " " +
+         fixed(t.aligned_worst_m, 3) + " | " + fixed(t.landmark_worst_m, 3) + " | " + fixed(t.nees_min, 2) + " " +
+         fixed(t.nees_max, 2) + " | " + std::to_string(t.met()) + " | " + fixed(t.smallestMargin(), 3);
+}
+
+utias::RobotSet allRobots(const sylva::datasets::UtiasDataset& data) {
+  utias::RobotSet out;
+  for (const auto& r : data.robots) out.push_back(&r);
+  return out;
+}
+
+/// The study behind the noise settings: the known-correspondence run of every robot for each
+/// setting of the grid of selection.hpp (the same setting for all robots; delay, calibration
+/// and everything else as given), one line per setting with the figures, how many of
+/// its targets it meets, the smallest margin, and the setting the declared rule picks (*).
 int configurationStudy(const Options& o, const sylva::datasets::UtiasDataset& data) {
-  const double process_scales[] = {0.5, 1.0, 2.0};
-  const double range_scales[] = {0.5, 0.75, 1.0, 1.5};
-  const double bearing_sigmas[] = {0.02, 0.03, 0.05};
-  const double omega_gains[] = {o.noise.omega_gain};
-  std::cout << "process range bearing omega_gain | Vicon mean worst | aligned mean worst | landmark worst | NEES min max | "
-               "targets met (of 6)\n";
-  for (const double og : omega_gains)
-    for (const double ps : process_scales)
-      for (const double rs : range_scales)
-        for (const double sb : bearing_sigmas) {
-          utias::NoiseConfig c = o.noise;
-          c.v_scale *= ps;
-          c.v_floor *= ps;
-          c.omega_scale *= ps;
-          c.omega_floor *= ps;
-          c.sigma_range_m *= rs;
-          c.sigma_range_per_m *= rs;
-          c.sigma_bearing_rad = sb;
-          c.omega_gain = og;
-          double vm = 0, vw = 0, am = 0, aw = 0, lw = 0, nmin = 1e300, nmax = 0;
-          for (const auto& robot : data.robots) {
-            const utias::GroundTruth gt(robot.groundtruth);
-            const auto s = utias::score(utias::runSlam(robot, c, utias::Association::kKnown, o.max_time_s), gt, data.landmarks);
-            vm += s.rmse_m / static_cast<double>(data.robots.size());
-            am += s.aligned_rmse_m / static_cast<double>(data.robots.size());
-            vw = std::max(vw, s.rmse_m);
-            aw = std::max(aw, s.aligned_rmse_m);
-            lw = std::max(lw, s.landmark_aligned_rmse_m);
-            nmin = std::min(nmin, s.nees_mean);
-            nmax = std::max(nmax, s.nees_mean);
-          }
-          const int met = (am <= 0.25) + (aw <= 0.40) + (vm <= 0.50) + (vw <= 0.80) + (lw <= 0.10) + (nmin >= 1.0 && nmax <= 6.0);
-          std::cout << std::setw(7) << ps << std::setw(6) << rs << std::setw(8) << sb << std::setw(11) << og << " | "
-                    << fixed(vm, 3) << " " << fixed(vw, 3) << " | " << fixed(am, 3) << " " << fixed(aw, 3) << " | "
-                    << fixed(lw, 3) << " | " << fixed(nmin, 1) << " " << fixed(nmax, 1) << " | " << met << "\n";
-        }
+  const auto grid = utias::studyGrid();
+  const auto summaries = utias::gridSummaries(allRobots(data), data.landmarks, o.noise, o.max_time_s);
+  const std::size_t chosen = utias::selectSetting(summaries);
+  std::cout << "utias --study on " << recordingName(o.data) << ", " << data.robots.size()
+            << " robots, command delay " << o.noise.command_delay_s << " s, calibration v_gain " << o.noise.v_gain
+            << ", v_turn_loss " << o.noise.v_turn_loss << " m/rad, omega_gain " << o.noise.omega_gain
+            << ", omega_bias " << o.noise.omega_bias << " rad/s\n";
+  std::cout << "  process range bearing | Vicon mean worst | aligned mean worst | landmark worst | NEES min max | "
+               "targets met (of 6) | smallest margin\n";
+  for (std::size_t k = 0; k < grid.size(); ++k)
+    std::cout << (k == chosen ? "* " : "  ") << std::setw(7) << grid[k].process << std::setw(6) << grid[k].range
+              << std::setw(8) << grid[k].bearing_rad << " | " << summaryText(summaries[k]) << "\n";
+  std::cout << "* the setting the declared rule picks (most targets met, then the largest smallest margin)\n";
+  return 0;
+}
+
+/// Leave-one-robot-out (fit.hpp): for each robot, the fitting procedure on the others and the
+/// robot scored with its result; then the procedure on all robots (the default's rule).
+int leaveOneOut(const Options& o, const sylva::datasets::UtiasDataset& data) {
+  if (data.robots.size() < 2)
+    sylva::fail(sylva::ErrorCode::kInvalidArgument, "--leave-one-out needs at least two robots (do not pass --robot)");
+  const std::string recording = recordingName(o.data);
+  const auto grid = utias::studyGrid();
+  json rotations = json::array();
+  std::vector<utias::RobotFigures> held_out;
+  std::vector<std::string> notes;
+  std::ostringstream text;
+  text << "utias --leave-one-out on " << recording << ": fit on the other robots, score the held-out one\n"
+       << "  fitted: command delay, calibration (pooled least squares), noise setting (grid of 36, declared rule)\n\n"
+       << "held-out | delay  v_gain  v_turn_loss  omega_gain  omega_bias | setting p / r / b | training: targets met,"
+          " margin | held-out: aligned  Vicon  landmark  NEES\n";
+  for (const auto& robot : data.robots) {
+    utias::RobotSet training;
+    for (const auto& r : data.robots)
+      if (r.robot != robot.robot) training.push_back(&r);
+    const utias::ConfigurationFit fit = utias::fitConfiguration(training, data.landmarks, o.noise, o.max_time_s);
+    const utias::Scores s = utias::scoreKnown(robot, data.landmarks, fit.config, o.max_time_s);
+    held_out.push_back(utias::figuresOf(s));
+    const std::string note = coverageNote(robot.robot, s);
+    if (!note.empty()) notes.push_back(note);
+    json training_robots = json::array();
+    for (const auto* r : training) training_robots.push_back(r->robot);
+    const auto& c = fit.commands;
+    rotations.push_back({{"held_out_robot", robot.robot},
+                         {"training_robots", training_robots},
+                         {"commands", commandFitJson(c)},
+                         {"setting", settingJson(fit.setting)},
+                         {"training", summaryJson(fit.grid[fit.chosen])},
+                         {"held_out",
+                          {{"aligned_rmse_m", r4(s.aligned_rmse_m)},
+                           {"vicon_rmse_m", r4(s.rmse_m)},
+                           {"landmark_aligned_rmse_m", r4(s.landmark_aligned_rmse_m)},
+                           {"nees_mean", r4(s.nees_mean)},
+                           {"samples", s.samples},
+                           {"samples_scored", s.samples_scored},
+                           {"truth_ends_early", s.truthEndsEarly()},
+                           {"scored_until_s", r4(s.last_scored_s)}}}});
+    text << std::setw(8) << robot.robot << " | " << fixed(c.delay_s, 2) << std::setw(8) << fixed(c.v_gain, 4)
+         << std::setw(13) << fixed(c.v_turn_loss, 4) << std::setw(12) << fixed(c.omega_gain, 4) << std::setw(12)
+         << fixed(c.omega_bias, 4) << " | " << std::setw(17) << settingText(fit.setting) << " | "
+         << fit.grid[fit.chosen].met() << ", " << fixed(fit.grid[fit.chosen].smallestMargin(), 3) << " | "
+         << fixed(s.aligned_rmse_m, 3) << "  " << fixed(s.rmse_m, 3) << "  " << fixed(s.landmark_aligned_rmse_m, 3)
+         << "  " << fixed(s.nees_mean, 2) << "\n";
+  }
+  const utias::TargetSummary summary = utias::summarize(held_out);
+  // The default's rule: the same procedure on every robot.
+  const utias::ConfigurationFit all = utias::fitConfiguration(allRobots(data), data.landmarks, o.noise, o.max_time_s);
+  const utias::NoiseConfig compiled;
+  const bool default_matches = utias::hasCommandFit(compiled, all.commands) && utias::hasSetting(compiled, all.setting);
+  if (o.json) {
+    json all_grid = json::array();
+    for (std::size_t k = 0; k < grid.size(); ++k)
+      all_grid.push_back({{"setting", settingJson(grid[k])}, {"summary", summaryJson(all.grid[k])}});
+    json all_robots{{"commands", commandFitJson(all.commands)},
+                    {"setting", settingJson(all.setting)},
+                    {"summary", summaryJson(all.grid[all.chosen])},
+                    {"compiled_default_matches", default_matches},
+                    {"grid", all_grid}};
+    json notes_json = notes;
+    std::cout << json{{"recording", recording},
+                      {"mode", "leave_one_robot_out"},
+                      {"rotations", rotations},
+                      {"held_out_summary", summaryJson(summary)},
+                      {"all_robots", all_robots},
+                      {"notes", notes_json},
+                      {"max_time_s", o.max_time_s},
+                      {"base_config", configJson(o.noise)}}
+                     .dump(2)
+              << "\n";
+    return 0;
+  }
+  std::cout << text.str() << "\n";
+  std::cout << "held-out robots against the targets (Vicon mean worst | aligned mean worst | landmark worst | NEES "
+               "min max | met | smallest margin):\n  "
+            << summaryText(summary) << "\n"
+            << "  aligned mean <= 0.25: " << (summary.alignedMeanMet() ? "met" : "NOT met")
+            << "; aligned every robot <= 0.40: " << (summary.alignedWorstMet() ? "met" : "NOT met")
+            << "; Vicon mean <= 0.50: " << (summary.viconMeanMet() ? "met" : "NOT met")
+            << "; Vicon every robot <= 0.80: " << (summary.viconWorstMet() ? "met" : "NOT met")
+            << "; landmark <= 0.10: " << (summary.landmarkMet() ? "met" : "NOT met")
+            << "; NEES in [1, 6]: " << (summary.neesMet() ? "met" : "NOT met") << "\n\n";
+  const auto& c = all.commands;
+  std::cout << "the procedure on all " << data.robots.size() << " robots (the default's rule): delay "
+            << fixed(c.delay_s, 2) << " s, v_gain " << fixed(c.v_gain, 4) << ", v_turn_loss " << fixed(c.v_turn_loss, 4)
+            << " m/rad, omega_gain " << fixed(c.omega_gain, 4) << ", omega_bias " << fixed(c.omega_bias, 4)
+            << " rad/s, setting " << settingText(all.setting) << " (on them: " << summaryText(all.grid[all.chosen])
+            << ")\n  the compiled default (noise_model.hpp) " << (default_matches ? "is" : "is NOT") << " this\n";
+  for (const auto& n : notes) std::cout << "note: " << n << "\n";
   return 0;
 }
 
@@ -310,6 +463,8 @@ int run(const Options& o) {
   const sylva::datasets::UtiasDataset data = sylva::datasets::loadUtiasMrclam(o.data, lo);
   if (o.noise_study) return noiseStudy(o, data);
   if (o.study) return configurationStudy(o, data);
+  if (o.leave_one_out) return leaveOneOut(o, data);
+  const std::string recording = recordingName(o.data);
 
   // Clusters of landmarks for the association statistics only: true positions closer than
   // 0.5 m, joined transitively (the data's landmarks stand in groups of two or three).
@@ -336,17 +491,21 @@ int run(const Options& o) {
     r.known_scores = utias::score(r.known, gt, data.landmarks);
     r.jcbb_scores = utias::score(r.jcbb, gt, data.landmarks);
     r.duration_s = r.known.samples.empty() ? 0.0 : r.known.samples.back().time_s - robot.groundtruth.front().time_s;
-    if (!o.svg_prefix.empty()) writeSvg(o.svg_prefix + "_robot" + std::to_string(r.robot) + ".svg", r, gt, data.landmarks);
+    if (!o.svg_prefix.empty()) writeSvg(o.svg_prefix + "_robot" + std::to_string(r.robot) + ".svg", recording, r, gt, data.landmarks);
     reports.push_back(std::move(r));
   }
 
   if (o.json) {
     json robots = json::array();
     for (const auto& r : reports) robots.push_back(robotJson(r));
-    std::cout << json{{"robots", robots}, {"config", configJson(o.noise)}}.dump(2) << "\n";
+    json notes = json::array();
+    for (const auto& r : reports)
+      if (const std::string n = coverageNote(r.robot, r.known_scores); !n.empty()) notes.push_back(n);
+    std::cout << json{{"recording", recording}, {"robots", robots}, {"notes", notes}, {"config", configJson(o.noise)}}.dump(2)
+              << "\n";
     return 0;
   }
-  std::cout << "utias: EKF-SLAM on " << data.folder << " (UTIAS MRCLAM, Leung et al. IJRR 2011)\n"
+  std::cout << "utias: EKF-SLAM on " << recording << " (" << data.folder << "; UTIAS MRCLAM, Leung et al. IJRR 2011)\n"
             << "  known: barcodes give the landmark; jcbb: associateJcbb, barcodes only to score\n\n";
   std::cout << "robot  known_rmse  known_aligned  jcbb_aligned  landmark_aligned  nees_mean  dead_reckoning  "
                "runtime_s (known+jcbb)\n";
@@ -378,6 +537,8 @@ int run(const Options& o) {
               << fixed(r.jcbb_scores.landmark_aligned_rmse_m, 3) << " m aligned, NEES "
               << fixed(r.jcbb_scores.nees_mean, 2) << "\n";
   }
+  for (const auto& r : reports)
+    if (const std::string note = coverageNote(r.robot, r.known_scores); !note.empty()) std::cout << "note: " << note << "\n";
   if (!o.svg_prefix.empty()) std::cout << "\npictures: " << o.svg_prefix << "_robot<N>.svg\n";
   return 0;
 }
@@ -388,13 +549,13 @@ int main(int argc, char** argv) {
   using sylva_examples::positive;
   Options o;
   CLI::App app{
-      "EKF-SLAM (sylva::Ekf<Unicycle2D, Point2>, RangeBearing) on UTIAS MRCLAM Dataset 7 (Leung et al., "
+      "EKF-SLAM (sylva::Ekf<Unicycle2D, Point2>, RangeBearing) on a UTIAS MRCLAM recording (Leung et al., "
       "IJRR 30(8) 2011), each robot with known (barcodes) and unknown (JCBB) correspondences; scores "
       "against the Vicon ground truth."};
   app.footer(
       "One noise configuration for all robots (examples/utias/noise_model.hpp, docs/examples/utias.md).\n"
       "Get the data from http://asrl.utias.utoronto.ca/datasets/mrclam/ and pass the folder with --data.");
-  app.add_option("--data", o.data, "folder of MRCLAM_Dataset7 (Barcodes.dat, Robot1_Odometry.dat, ...)")
+  app.add_option("--data", o.data, "folder of one MRCLAM recording (Barcodes.dat, Robot1_Odometry.dat, ...); its name labels the output")
       ->capture_default_str();
   app.add_option("--robot", o.robot, "robot 1-5 (0: all five)")->check(CLI::Range(0, 5))->capture_default_str();
   app.add_option("--max-time", o.max_time_s, "stop after this many seconds of data (0: all)")
@@ -405,8 +566,13 @@ int main(int argc, char** argv) {
   app.add_flag("--noise-study", o.noise_study,
                "print the residual statistics of measurements and commands against the ground truth (JSON)");
   app.add_flag("--study", o.study,
-               "run the known-correspondence filter of every robot over a grid of global noise scales around "
-               "the configuration given and print one line per setting (how the default was chosen)");
+               "run the known-correspondence filter of every robot over the 36 noise settings of the grid "
+               "(examples/utias/selection.hpp; they replace the command and measurement noise flags) with the "
+               "delay and calibration given, one line per setting, and mark the one the declared rule picks");
+  app.add_flag("--leave-one-out", o.leave_one_out,
+               "leave-one-robot-out: for each robot, fit the command delay, calibration and noise setting on "
+               "the other robots (examples/utias/fit.hpp) and score it; then the same fit on all robots (the "
+               "default's rule). Text table, or JSON with --json");
   auto& c = o.noise;
   app.add_option("--command-delay", c.command_delay_s, "a command logged at t acts from t + this (s)")
       ->check(positive(true))

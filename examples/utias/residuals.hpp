@@ -141,7 +141,18 @@ inline CommandResiduals commandResiduals(const sylva::datasets::UtiasRobotData& 
 /// RMS difference between the commanded turn rate logged at t and the true turn rate at
 /// t + lag (central difference of the Vicon heading over +-0.1 s), over every 5th command:
 /// the lag that minimizes it is how late the robot follows its commands.
-inline double turnRateLagRms(const sylva::datasets::UtiasRobotData& robot, double lag_s) {
+/// The sums behind turnRateLagRms, so that several robots can be pooled.
+struct TurnRateLagSums {
+  double squared_sum = 0.0;  ///< sum of squared differences (rad/s)^2
+  long count = 0;
+  void add(const TurnRateLagSums& o) {
+    squared_sum += o.squared_sum;
+    count += o.count;
+  }
+  double rms() const { return count > 0 ? std::sqrt(squared_sum / static_cast<double>(count)) : 0.0; }
+};
+
+inline TurnRateLagSums turnRateLagSums(const sylva::datasets::UtiasRobotData& robot, double lag_s) {
   const GroundTruth gt(robot.groundtruth);
   double sum = 0.0;
   long n = 0;
@@ -152,7 +163,14 @@ inline double turnRateLagRms(const sylva::datasets::UtiasRobotData& robot, doubl
     sum += (rate - robot.odometry[k].u[1]) * (rate - robot.odometry[k].u[1]);
     ++n;
   }
-  return n > 0 ? std::sqrt(sum / static_cast<double>(n)) : 0.0;
+  TurnRateLagSums out;
+  out.squared_sum = sum;
+  out.count = n;
+  return out;
+}
+
+inline double turnRateLagRms(const sylva::datasets::UtiasRobotData& robot, double lag_s) {
+  return turnRateLagSums(robot, lag_s).rms();
 }
 
 }  // namespace utias
