@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -39,7 +40,7 @@ using namespace victoria_park;
 constexpr int kSkipped = 77;  // ctest's SKIP_RETURN_CODE
 
 nlohmann::json toJson(const RunResult& r) {
-  return {{"gps_rmse_m", r.gps.rmse_valid_m},
+  nlohmann::json j = {{"gps_rmse_m", r.gps.rmse_valid_m},
           {"gps_median_m", r.gps.median_valid_m},
           {"gps_rmse_all_m", r.gps.rmse_all_m},
           {"gps_max_valid_m", r.gps.max_valid_m},
@@ -56,6 +57,12 @@ nlohmann::json toJson(const RunResult& r) {
           {"runtime_s", r.runtime_s},
           {"step_ms_end", r.step_ms_end},
           {"step_ms_mean", r.step_ms_mean}};
+  if (std::isfinite(r.steering_offset_rad))
+    j["bias_estimates"] = {{"speed_scale", r.speed_scale},
+                           {"speed_scale_sigma", r.speed_scale_sigma},
+                           {"steering_offset_rad", r.steering_offset_rad},
+                           {"steering_offset_sigma_rad", r.steering_offset_sigma_rad}};
+  return j;
 }
 
 void printTable(const RunResult& r) {
@@ -64,6 +71,11 @@ void printTable(const RunResult& r) {
             << " m, max " << r.gps.max_valid_m << " m, all fixes " << r.gps.rmse_all_m << " m | landmarks "
             << r.landmarks << " | readings " << r.readings << ", paired " << r.paired << ", ambiguous "
             << r.ambiguous << ", tentative " << r.tentative_readings << ", refused " << r.refused_updates
+            << (std::isfinite(r.steering_offset_rad)
+                    ? " | speed scale error " + std::to_string(r.speed_scale) + " +- " + std::to_string(r.speed_scale_sigma) +
+                          ", steering offset " + std::to_string(r.steering_offset_rad) + " +- " +
+                          std::to_string(r.steering_offset_sigma_rad) + " rad"
+                    : std::string())
             << " | " << r.scans << " scans, " << r.predictions << " predictions, " << r.runtime_s << " s, "
             << r.step_ms_end << " ms/scan at the end\n";
 }
@@ -135,6 +147,16 @@ int main(int argc, char** argv) {
   app.add_option("--linearization", cfg.linearization,
                  "first-estimates (FEJ), invariant (the right-invariant EKF) or current (the textbook EKF)")
       ->check(CLI::IsMember({"first-estimates", "invariant", "current"}))->capture_default_str();
+  app.add_flag("--bias-states", cfg.bias_states,
+               "estimate an encoder speed scale error and a steering offset online (Ackermann2DWithBias)");
+  app.add_option("--speed-scale-prior", cfg.speed_scale_prior, "prior sigma of the speed scale error")
+      ->check(sylva_examples::positive(false))->capture_default_str();
+  app.add_option("--steering-offset-prior", cfg.steering_offset_prior_rad, "prior sigma of the steering offset (rad)")
+      ->check(sylva_examples::positive(false))->capture_default_str();
+  app.add_option("--speed-scale-walk", cfg.speed_scale_walk, "random walk of the speed scale error (1/sqrt(s))")
+      ->check(sylva_examples::positive(false))->capture_default_str();
+  app.add_option("--steering-offset-walk", cfg.steering_offset_walk_rad, "random walk of the steering offset (rad/sqrt(s))")
+      ->check(sylva_examples::positive(false))->capture_default_str();
   app.add_option("--gate", cfg.gate_probability, "probability of the association's chi-square gates")
       ->check(CLI::Range(0.5, 0.999999))->capture_default_str();
   app.add_option("--predict", cfg.predict, "scan (integrate odometry between scans) or odometry (predict per sample)")
@@ -151,6 +173,11 @@ int main(int argc, char** argv) {
   app.add_flag("--robustness", study, "run the 81-setting noise study (every noise value x1.5, x1, /1.5)");
   app.add_option("--threads", threads, "threads for the robustness study")->check(CLI::Range(1, 64))->capture_default_str();
   CLI11_PARSE(app, argc, argv);
+  if (cfg.bias_states && cfg.linearization == "first-estimates") {
+    std::cerr << "victoria_park: --bias-states needs --linearization invariant or current: the car with bias "
+                 "states has no first-estimates Jacobian (its biases couple the heading to the estimate)\n";
+    return 2;
+  }
 
   if (!std::filesystem::exists(data_dir + "/measurements.dat")) {
     std::cerr << "victoria_park: SKIPPED: no measurements.dat in '" << data_dir

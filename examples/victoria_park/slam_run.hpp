@@ -2,7 +2,9 @@
 // One EKF-SLAM run over the Victoria Park data, for either variant:
 //   PointVariant  Ekf<Ackermann2D, Point2>   with RangeBearing        z = [range, bearing]
 //   TreeVariant   Ekf<Ackermann2D, TreeXYR>  with RangeBearingDiameter z = [range, bearing, diameter]
-// Both measure from the laser, mounted at (L + a, b) in the rear-axle frame.
+// Both measure from the laser, mounted at (L + a, b) in the rear-axle frame. With
+// `bias_states` the car is Ackermann2DWithBias instead: an encoder speed scale error and a
+// steering offset join the state and are estimated online; the sensors see its pose view.
 //
 // Per laser scan (the scan is the only event that changes the map):
 //   1. Predict to the scan time with the odometry since the previous scan. "scan" (default):
@@ -37,6 +39,7 @@
 #include <sylva/landmarks.hpp>
 #include <sylva/measurements.hpp>
 #include <sylva/motion/ackermann_2d.hpp>
+#include <sylva/motion/ackermann_2d_with_bias.hpp>
 
 #include "config.hpp"
 #include "gps_error.hpp"
@@ -97,15 +100,22 @@ struct RunResult {
   double step_ms_mean = 0.0;
   std::vector<TimedPoint> laser_path;  ///< in the GPS frame after alignment
   std::vector<MapLandmark> map;        ///< in the GPS frame after alignment
+  // With bias states: the final estimates and their standard deviations (else NaN).
+  double speed_scale = std::nan("");
+  double speed_scale_sigma = std::nan("");
+  double steering_offset_rad = std::nan("");
+  double steering_offset_sigma_rad = std::nan("");
 };
 
 namespace detail {
 
 /// Integrates odometry up to time t, either into the filter one sample at a time or into one
-/// step (see the file comment).
+/// step (see the file comment). For a car with bias states the noise gains the biases'
+/// random walks (variance q dt over a step of dt: Var(w) = q / dt).
 template <class Filter>
 class OdometryIntegrator {
  public:
+  static constexpr int kNoiseDim = Filter::kNoiseDim;
   OdometryIntegrator(const std::vector<ds::VictoriaParkOdometry>& odometry, const Config& c, const sylva::Ackermann2D& car)
       : odo_(odometry), cfg_(c), car_(car),
         q_sample_(Vec<2>(c.noise.speed_mps * c.noise.speed_mps, c.noise.steering_rad * c.noise.steering_rad).asDiagonal()) {
@@ -152,8 +162,14 @@ class OdometryIntegrator {
   }
 
  private:
-  Gaussian<2> noiseFor(double dt) const {
-    return Gaussian<2>::covariance(q_sample_ * (cfg_.odometry_period_s / dt));
+  Gaussian<kNoiseDim> noiseFor(double dt) const {
+    Mat<kNoiseDim, kNoiseDim> Q = Mat<kNoiseDim, kNoiseDim>::Zero();
+    Q.template topLeftCorner<2, 2>() = q_sample_ * (cfg_.odometry_period_s / dt);
+    if constexpr (kNoiseDim == 4) {
+      Q(2, 2) = cfg_.speed_scale_walk * cfg_.speed_scale_walk / dt;
+      Q(3, 3) = cfg_.steering_offset_walk_rad * cfg_.steering_offset_walk_rad / dt;
+    }
+    return Gaussian<kNoiseDim>::covariance(Q);
   }
   const std::vector<ds::VictoriaParkOdometry>& odo_;
   const Config& cfg_;
@@ -171,25 +187,32 @@ struct Tentative {
 
 }  // namespace detail
 
-template <class V>
-RunResult runSlam(const ds::VictoriaParkData& data, const Config& cfg, const std::vector<char>& gps_valid) {
-  using Filter = sylva::Ekf<sylva::Ackermann2D, typename V::Landmark>;
+template <class V, class Car>
+RunResult runSlamWith(const ds::VictoriaParkData& data, const Config& cfg, const std::vector<char>& gps_valid) {
+  using Filter = sylva::Ekf<Car, typename V::Landmark>;
+  constexpr int kCarDim = Car::kDim;
   using Model = typename V::Model;
   constexpr int M = V::kDim;
   using Clock = std::chrono::steady_clock;
 
-  const sylva::Ackermann2D car(cfg.wheelbase_m, cfg.encoder_offset_m);
+  const Car car(cfg.wheelbase_m, cfg.encoder_offset_m);
   const Vec<2> mount(cfg.wheelbase_m + cfg.laser_ahead_m, cfg.laser_left_m);
   const Model model(mount);
   const typename V::Inverse inverse(mount);
   const Gaussian<M> R = V::noise(cfg);
   const double new_gate = sylva::chiSquareGate(M, cfg.new_landmark_probability);
 
-  Filter ekf(Vec<3>::Zero(), Mat<3, 3>::Zero(), car);
+  // The car starts at the origin of the map; the biases (if any) at zero with their priors.
+  Mat<kCarDim, kCarDim> P0 = Mat<kCarDim, kCarDim>::Zero();
+  if constexpr (kCarDim == 5) {
+    P0(3, 3) = cfg.speed_scale_prior * cfg.speed_scale_prior;
+    P0(4, 4) = cfg.steering_offset_prior_rad * cfg.steering_offset_prior_rad;
+  }
+  Filter ekf(Vec<kCarDim>::Zero(), P0, car);
   if (cfg.linearization == "first-estimates") ekf.setLinearizationPoint(sylva::LinearizationPoint::kFirstEstimates);
   if (cfg.linearization == "invariant") ekf.setLinearizationPoint(sylva::LinearizationPoint::kInvariant);
   ekf.reserve(V::Landmark::kDim * 512);
-  detail::OdometryIntegrator<Filter> odometry(data.odometry, cfg, car);
+  detail::OdometryIntegrator<Filter> odometry(data.odometry, cfg, sylva::Ackermann2D(cfg.wheelbase_m, cfg.encoder_offset_m));
 
   RunResult out;
   out.variant = V::kName;
@@ -216,7 +239,7 @@ RunResult runSlam(const ds::VictoriaParkData& data, const Config& cfg, const std
 
     // Candidates: landmarks in front of the laser and within range.
     candidates.clear();
-    const Vec<3> x = ekf.robotMean();
+    const Vec<3> x = ekf.robotMean().template head<3>();
     const Vec<2> sensor = sylva::RangeBearing(mount).sensorPosition<double>(x);
     for (const sylva::LandmarkSlot& s : ekf.slots()) {
       const Vec<2> l = ekf.template landmarkMean<typename V::Landmark>(s.id).template head<2>();
@@ -266,7 +289,8 @@ RunResult runSlam(const ds::VictoriaParkData& data, const Config& cfg, const std
     for (std::size_t i = 0; i < z.size(); ++i) {
       if (!is_new[i]) continue;
       ++out.tentative_readings;
-      const Vec<2> p = sylva::InverseRangeBearing(mount)(ekf.robotMean(), Vec<2>(z[i].template head<2>()));
+      const Vec<2> p =
+          sylva::InverseRangeBearing(mount)(Vec<3>(ekf.robotMean().template head<3>()), Vec<2>(z[i].template head<2>()));
       detail::Tentative* best = nullptr;
       double best_d = cfg.tentative_radius_m;
       for (auto& t : tentatives) {
@@ -301,7 +325,7 @@ RunResult runSlam(const ds::VictoriaParkData& data, const Config& cfg, const std
                                     }),
                      tentatives.end());
 
-    const Vec<3> xr = ekf.robotMean();
+    const Vec<3> xr = ekf.robotMean().template head<3>();
     path.push_back(TimedPoint{scan.t_s, sylva::RangeBearing(mount).sensorPosition<double>(xr)});
     step_ms.push_back(std::chrono::duration<double, std::milli>(Clock::now() - step_begin).count());
   }
@@ -320,7 +344,20 @@ RunResult runSlam(const ds::VictoriaParkData& data, const Config& cfg, const std
     const auto l = ekf.template landmarkMean<typename V::Landmark>(s.id);
     out.map.push_back(MapLandmark{toGps(l.template head<2>()), V::radius(l), sightings[static_cast<std::size_t>(s.id)]});
   }
+  if constexpr (kCarDim == 5) {
+    out.speed_scale = ekf.robotMean()[3];
+    out.steering_offset_rad = ekf.robotMean()[4];
+    out.speed_scale_sigma = std::sqrt(ekf.robotCovariance()(3, 3));
+    out.steering_offset_sigma_rad = std::sqrt(ekf.robotCovariance()(4, 4));
+  }
   return out;
+}
+
+/// One run of variant V with the car the configuration asks for.
+template <class V>
+RunResult runSlam(const ds::VictoriaParkData& data, const Config& cfg, const std::vector<char>& gps_valid) {
+  if (cfg.bias_states) return runSlamWith<V, sylva::Ackermann2DWithBias>(data, cfg, gps_valid);
+  return runSlamWith<V, sylva::Ackermann2D>(data, cfg, gps_valid);
 }
 
 }  // namespace victoria_park

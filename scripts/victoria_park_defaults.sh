@@ -1,0 +1,72 @@
+#!/usr/bin/env bash
+# The study that chooses the Victoria Park example's linearization and steering noise by the
+# median of the 81-setting robustness study (not by the best single run), and writes
+# docs/examples/victoria-park-defaults.md:
+#   1. a Release build of examples/victoria_park in BUILD_DIR (default build-real-data, as
+#      scripts/real_data_report.sh: clang++ -O3 -march=native),
+#   2. victoria_park --robustness --json at gate 0.99 for every linearization in
+#      LINEARIZATIONS and steering noise in STEERINGS (both variants; every other value the
+#      example's default),
+#   3. scripts/victoria_park_defaults.py choose: the declared rule picks one setting,
+#   4. the same study at gate 0.999 for the chosen setting, the issue's second gate, and single
+#      runs of the chosen setting with bias states (--bias-states) at two random-walk levels,
+#   5. scripts/victoria_park_defaults.py page: the page, from the JSON files (kept in BUILD_DIR).
+# About 5 minutes per study on 2 cores (seven studies with the defaults below).
+#
+# Usage: bash scripts/victoria_park_defaults.sh [BUILD_DIR]
+# Environment: DATA_DIR (default <repo>/../shared/data), THREADS (default 2), JOBS (default 2),
+# LINEARIZATIONS (default "first-estimates invariant"), STEERINGS (default "0.015 0.017 0.019").
+set -euo pipefail
+
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+build_dir="${1:-${root}/build-real-data}"
+data_dir="${DATA_DIR:-${root}/../shared/data}"
+threads="${THREADS:-2}"
+jobs="${JOBS:-2}"
+read -r -a linearizations <<< "${LINEARIZATIONS:-first-estimates invariant}"
+read -r -a steerings <<< "${STEERINGS:-0.015 0.017 0.019}"
+
+if [[ ! -f "${data_dir}/victoria-park/measurements.dat" ]]; then
+  echo "victoria_park_defaults.sh: ${data_dir}/victoria-park is missing; see docs/examples/victoria-park.md" \
+    "for where to get the data, and set DATA_DIR" >&2
+  exit 1
+fi
+
+# shellcheck source=lib/install_packages.sh
+source "${root}/scripts/lib/install_packages.sh"
+sylva_install_packages build-essential cmake clang libeigen3-dev libcli11-dev nlohmann-json3-dev python3
+
+if [[ ! -f "${build_dir}/CMakeCache.txt" && -z "${CXX:-}" ]] && command -v clang++ > /dev/null; then
+  export CXX=clang++
+fi
+cmake -S "${root}" -B "${build_dir}" -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS="-march=native" \
+  -DSYLVA_BUILD_TESTS=OFF -DSYLVA_BUILD_BENCHMARKS=OFF -DSYLVA_BUILD_EXAMPLES=ON
+cmake --build "${build_dir}" -j "${jobs}" --target victoria_park
+
+program="${build_dir}/examples/victoria_park/victoria_park"
+out_dir="${build_dir}/victoria_park_defaults"
+rm -rf "${out_dir}"
+mkdir -p "${out_dir}"
+study() {  # linearization steering gate
+  local file="${out_dir}/study_$1_$2_$3.json"
+  echo "==> victoria_park --robustness --linearization $1 --sigma-steering $2 --gate $3" >&2
+  "${program}" --data "${data_dir}/victoria-park" --robustness --json --threads "${threads}" \
+    --linearization "$1" --sigma-steering "$2" --gate "$3" > "${file}"
+}
+for lin in "${linearizations[@]}"; do
+  for steering in "${steerings[@]}"; do
+    study "${lin}" "${steering}" 0.99
+  done
+done
+read -r chosen_lin chosen_steering < <(python3 "${root}/scripts/victoria_park_defaults.py" choose "${out_dir}")
+study "${chosen_lin}" "${chosen_steering}" 0.999
+# Bias states (issue 16, part 4) at the chosen setting: one run each, not part of the choice.
+for walk in 1e-4 1e-3; do
+  echo "==> victoria_park --bias-states --steering-offset-walk ${walk} --speed-scale-walk ${walk}" >&2
+  "${program}" --data "${data_dir}/victoria-park" --json --linearization "${chosen_lin}" \
+    --sigma-steering "${chosen_steering}" --bias-states --steering-offset-walk "${walk}" --speed-scale-walk "${walk}" \
+    > "${out_dir}/bias_${walk}.json"
+done
+python3 "${root}/scripts/victoria_park_defaults.py" page "${out_dir}" "bash scripts/victoria_park_defaults.sh" \
+  > "${root}/docs/examples/victoria-park-defaults.md"
+echo "==> wrote docs/examples/victoria-park-defaults.md (chosen: ${chosen_lin}, ${chosen_steering} rad)" >&2
