@@ -34,11 +34,17 @@ struct Config {
   /// the steering noise are chosen by the median of the robustness study
   /// (scripts/victoria_park_defaults.sh, docs/examples/victoria-park-defaults.md).
   std::string linearization = "invariant";
-  /// Estimate an encoder speed scale error and a steering offset online (the car is then
-  /// sylva::Ackermann2DWithBias). Priors and random walks are declared, not fitted: a wheel
-  /// radius known to about 5%, a steering sensor zeroed to about 1 deg, both nearly constant
-  /// over a run (a walk of 1e-4 per sqrt(s) drifts by 0.4% and 0.2 deg in 26 minutes).
-  bool bias_states = false;
+  /// Which biases to estimate online: "none", "speed" (an encoder speed scale error),
+  /// "steering" (a steering offset) or "both". With any but "none" the car is
+  /// sylva::Ackermann2DWithBias, whose state always holds both; a bias not estimated is held
+  /// at zero (prior and walk kHeldSigma, numerically nothing). Priors and random walks are
+  /// declared, not fitted: a wheel radius known to about 5%, a steering sensor zeroed to about
+  /// 1 deg, both nearly constant over a run (a walk of 1e-4 per sqrt(s) drifts by 0.4% and
+  /// 0.2 deg in 26 minutes).
+  std::string bias_states = "speed";
+  static constexpr double kHeldSigma = 1e-12;
+  bool estimatesSpeedScale() const { return bias_states == "speed" || bias_states == "both"; }
+  bool estimatesSteeringOffset() const { return bias_states == "steering" || bias_states == "both"; }
   double speed_scale_prior = 0.05;
   double steering_offset_prior_rad = 0.02;
   double speed_scale_walk = 1e-4;          ///< per sqrt(s)

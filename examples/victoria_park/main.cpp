@@ -147,8 +147,10 @@ int main(int argc, char** argv) {
   app.add_option("--linearization", cfg.linearization,
                  "first-estimates (FEJ), invariant (the right-invariant EKF) or current (the textbook EKF)")
       ->check(CLI::IsMember({"first-estimates", "invariant", "current"}))->capture_default_str();
-  app.add_flag("--bias-states", cfg.bias_states,
-               "estimate an encoder speed scale error and a steering offset online (Ackermann2DWithBias)");
+  app.add_option("--bias-states", cfg.bias_states,
+                 "biases estimated online (Ackermann2DWithBias): none, speed (encoder scale error), steering "
+                 "(steering offset) or both")
+      ->check(CLI::IsMember({"none", "speed", "steering", "both"}))->capture_default_str();
   app.add_option("--speed-scale-prior", cfg.speed_scale_prior, "prior sigma of the speed scale error")
       ->check(sylva_examples::positive(false))->capture_default_str();
   app.add_option("--steering-offset-prior", cfg.steering_offset_prior_rad, "prior sigma of the steering offset (rad)")
@@ -173,9 +175,10 @@ int main(int argc, char** argv) {
   app.add_flag("--robustness", study, "run the 81-setting noise study (every noise value x1.5, x1, /1.5)");
   app.add_option("--threads", threads, "threads for the robustness study")->check(CLI::Range(1, 64))->capture_default_str();
   CLI11_PARSE(app, argc, argv);
-  if (cfg.bias_states && cfg.linearization == "first-estimates") {
-    std::cerr << "victoria_park: --bias-states needs --linearization invariant or current: the car with bias "
-                 "states has no first-estimates Jacobian (its biases couple the heading to the estimate)\n";
+  if (cfg.bias_states != "none" && cfg.linearization == "first-estimates") {
+    std::cerr << "victoria_park: --linearization first-estimates needs --bias-states none (the default is '"
+              << Config().bias_states << "'): the car with bias states has no first-estimates Jacobian (its biases "
+                                         "couple the heading to the estimate); or use --linearization invariant or current\n";
     return 2;
   }
 

@@ -3,7 +3,7 @@
 //   PointVariant  Ekf<Ackermann2D, Point2>   with RangeBearing        z = [range, bearing]
 //   TreeVariant   Ekf<Ackermann2D, TreeXYR>  with RangeBearingDiameter z = [range, bearing, diameter]
 // Both measure from the laser, mounted at (L + a, b) in the rear-axle frame. With
-// `bias_states` the car is Ackermann2DWithBias instead: an encoder speed scale error and a
+// `bias_states` other than "none" the car is Ackermann2DWithBias instead: an encoder speed scale error and a
 // steering offset join the state and are estimated online; the sensors see its pose view.
 //
 // Per laser scan (the scan is the only event that changes the map):
@@ -166,8 +166,10 @@ class OdometryIntegrator {
     Mat<kNoiseDim, kNoiseDim> Q = Mat<kNoiseDim, kNoiseDim>::Zero();
     Q.template topLeftCorner<2, 2>() = q_sample_ * (cfg_.odometry_period_s / dt);
     if constexpr (kNoiseDim == 4) {
-      Q(2, 2) = cfg_.speed_scale_walk * cfg_.speed_scale_walk / dt;
-      Q(3, 3) = cfg_.steering_offset_walk_rad * cfg_.steering_offset_walk_rad / dt;
+      const double speed = cfg_.estimatesSpeedScale() ? cfg_.speed_scale_walk : Config::kHeldSigma;
+      const double steering = cfg_.estimatesSteeringOffset() ? cfg_.steering_offset_walk_rad : Config::kHeldSigma;
+      Q(2, 2) = speed * speed / dt;
+      Q(3, 3) = steering * steering / dt;
     }
     return Gaussian<kNoiseDim>::covariance(Q);
   }
@@ -205,8 +207,10 @@ RunResult runSlamWith(const ds::VictoriaParkData& data, const Config& cfg, const
   // The car starts at the origin of the map; the biases (if any) at zero with their priors.
   Mat<kCarDim, kCarDim> P0 = Mat<kCarDim, kCarDim>::Zero();
   if constexpr (kCarDim == 5) {
-    P0(3, 3) = cfg.speed_scale_prior * cfg.speed_scale_prior;
-    P0(4, 4) = cfg.steering_offset_prior_rad * cfg.steering_offset_prior_rad;
+    const double speed = cfg.estimatesSpeedScale() ? cfg.speed_scale_prior : Config::kHeldSigma;
+    const double steering = cfg.estimatesSteeringOffset() ? cfg.steering_offset_prior_rad : Config::kHeldSigma;
+    P0(3, 3) = speed * speed;
+    P0(4, 4) = steering * steering;
   }
   Filter ekf(Vec<kCarDim>::Zero(), P0, car);
   if (cfg.linearization == "first-estimates") ekf.setLinearizationPoint(sylva::LinearizationPoint::kFirstEstimates);
@@ -356,7 +360,7 @@ RunResult runSlamWith(const ds::VictoriaParkData& data, const Config& cfg, const
 /// One run of variant V with the car the configuration asks for.
 template <class V>
 RunResult runSlam(const ds::VictoriaParkData& data, const Config& cfg, const std::vector<char>& gps_valid) {
-  if (cfg.bias_states) return runSlamWith<V, sylva::Ackermann2DWithBias>(data, cfg, gps_valid);
+  if (cfg.bias_states != "none") return runSlamWith<V, sylva::Ackermann2DWithBias>(data, cfg, gps_valid);
   return runSlamWith<V, sylva::Ackermann2D>(data, cfg, gps_valid);
 }
 
