@@ -236,12 +236,7 @@ NeesEnsemble poseNees(LinearizationPoint point, int runs, unsigned seed) {
   const Vec<2> u_true(1.0, 2.0 * kPi / (steps / 2 * dt));  // two laps
   // Landmarks on two rings around the circle's centre (0, rho), 2 m inside and outside.
   const double rho = u_true[0] / u_true[1];
-  std::vector<Vec<2>> landmarks;
-  for (int i = 0; i < 16; ++i) {
-    const double a = 2.0 * kPi * i / 16;
-    const double r = rho + (i % 2 == 0 ? 2.0 : -2.0);
-    landmarks.emplace_back(r * std::sin(a), rho - r * std::cos(a));
-  }
+  const std::vector<Vec<2>> landmarks = sylva_test::landmarksOnTwoRings(16, rho, rho - 2.0, rho + 2.0);
   const double sv = 0.05, sw = 0.1;  // odometry noise [m/s, rad/s], true and assumed
   const double sr = 0.1, sb = 0.05;  // sensor noise [m, rad], true and assumed
   const Gaussian<2> Q = Gaussian<2>::sigmas(Vec<2>(sv, sw));

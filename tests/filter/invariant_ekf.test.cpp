@@ -23,6 +23,7 @@
 #include <sylva/motion/odometry_2d.hpp>
 #include <sylva/motion/unicycle_2d.hpp>
 
+#include "filter/planar_scene.hpp"
 #include "filter_snapshot.hpp"
 #include "sylva_catch.hpp"
 
@@ -138,17 +139,6 @@ struct InvariantReference {
   }
 };
 
-/// Landmarks around a robot that drives a circle of radius 4 m about (0, 4).
-std::vector<Vec<2>> ringOfLandmarks() {
-  std::vector<Vec<2>> out;
-  for (int i = 0; i < 12; ++i) {
-    const double a = 2.0 * kPi * i / 12;
-    const double r = i % 2 == 0 ? 6.0 : 2.0;
-    out.emplace_back(r * std::sin(a), 4.0 - r * std::cos(a));
-  }
-  return out;
-}
-
 const Gaussian<2> kControlNoise = Gaussian<2>::sigmas(Vec<2>(0.1, 0.08));
 const Gaussian<2> kSensorNoise = Gaussian<2>::sigmas(Vec<2>(0.1, 0.04));
 
@@ -159,7 +149,8 @@ template <typename FilterT, typename Step>
 void driveCircle(FilterT& ekf, InvariantReference* reference, int steps, unsigned seed, Fusion fusion, Step&& step) {
   std::mt19937_64 rng(seed);
   std::normal_distribution<double> normal;
-  const std::vector<Vec<2>> landmarks = ringOfLandmarks();
+  // The robot drives a circle of radius 4 m (1 m/s, 0.25 rad/s); landmarks 2 m and 6 m from its centre.
+  const std::vector<Vec<2>> landmarks = sylva_test::landmarksOnTwoRings(12, 4.0, 2.0, 6.0);
   const Vec<2> u_true(1.0, 0.25);
   const double dt = 0.5;
   Vec<3> truth = Vec<3>::Zero();

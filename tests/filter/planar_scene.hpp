@@ -1,8 +1,13 @@
 #pragma once
-// The small planar scene of the linearization tests (first estimates, ideal): the noise of
-// the odometry [v, omega] and of the range-bearing sensor, and a filter that has just seen
-// landmark 7 at range 5 m, bearing 0.4 rad.
+// The small planar scene of the linearization tests (first estimates, ideal, invariant, pose
+// view): the noise of the odometry [v, omega] and of the range-bearing sensor, a filter that
+// has just seen landmark 7 at range 5 m, bearing 0.4 rad, and landmarks on two rings around
+// the circle a robot drives.
 
+#include <cmath>
+#include <vector>
+
+#include <sylva/core/angles.hpp>
 #include <sylva/filter/ekf.hpp>
 #include <sylva/landmarks/point2.hpp>
 #include <sylva/measurements/range_bearing.hpp>
@@ -21,6 +26,19 @@ inline sylva::Ekf<sylva::Unicycle2D, sylva::Point2> filterWithLandmark7(const sy
   ekf.setLinearizationPoint(point);
   ekf.add(7, sylva::InverseRangeBearing(), sylva::Vec<2>(5.0, 0.4), planarSensorNoise());
   return ekf;
+}
+
+/// `count` landmarks around the circle of radius `radius` about (0, radius) that a robot
+/// starting at the origin heading along +x drives (counter-clockwise): at even indices on a
+/// ring `outer` from the centre, at odd ones `inner`, evenly spaced in angle.
+inline std::vector<sylva::Vec<2>> landmarksOnTwoRings(int count, double radius, double inner, double outer) {
+  std::vector<sylva::Vec<2>> out;
+  for (int i = 0; i < count; ++i) {
+    const double a = 2.0 * sylva::kPi * i / count;
+    const double r = i % 2 == 0 ? outer : inner;
+    out.emplace_back(r * std::sin(a), radius - r * std::cos(a));
+  }
+  return out;
 }
 
 }  // namespace sylva_test

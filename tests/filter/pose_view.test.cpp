@@ -18,6 +18,7 @@
 #include <sylva/motion/ackermann_2d.hpp>
 #include <sylva/motion/ackermann_2d_with_bias.hpp>
 
+#include "filter/planar_scene.hpp"
 #include "sylva_catch.hpp"
 
 using namespace sylva;
@@ -31,16 +32,8 @@ const Ackermann2D kCar(2.83, 0.76);
 const Gaussian<2> kReadingNoise = Gaussian<2>::sigmas(Vec<2>(0.1, 0.02));
 const Vec<2> kCarMount(3.78, 0.5);  // a sensor ahead of the rear axle, as on the Victoria Park car
 
-/// Landmarks on two rings around the centre (0, 15) of the car's circle.
-std::vector<Vec<2>> landmarks() {
-  std::vector<Vec<2>> out;
-  for (int i = 0; i < 24; ++i) {
-    const double a = 2.0 * kPi * i / 24;
-    const double r = i % 2 == 0 ? 19.0 : 11.0;
-    out.emplace_back(r * std::sin(a), 15.0 - r * std::cos(a));
-  }
-  return out;
-}
+/// Landmarks 11 m and 19 m from the centre (0, 15) of the car's circle.
+std::vector<Vec<2>> landmarks() { return sylva_test::landmarksOnTwoRings(24, 15.0, 11.0, 19.0); }
 
 /// The noise of the 5-state car for a step of dt: control noise, bias random walks of
 /// spectral density q_k and q_b (Var(w) = q / dt).
