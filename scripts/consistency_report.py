@@ -1,10 +1,12 @@
 #!/usr/bin/env python3
 """Writes docs/consistency.md from the JSON of examples/consistency.
 
-Usage: consistency_report.py SUITES_JSON FACTORS_JSON COMMAND RAISED_ACCEL [TUNING_JSON] > docs/consistency.md
+Usage: consistency_report.py SUITES_JSON FACTORS_JSON COMMAND RAISED_ACCEL [TUNING_JSON [MOTION_JSON]]
+           > docs/consistency.md
 
 SUITES_JSON holds the suites planar, monocular and monocular-forests; FACTORS_JSON the
-suite monocular-factors; COMMAND is the command that regenerates the page (printed on it).
+suite monocular-factors; TUNING_JSON monocular-tuning; MOTION_JSON monocular-motion; COMMAND
+is the command that regenerates the page (printed on it).
 Every number on the page comes from the two files; the sentences that judge a number
 (inside or outside a bound, which factor matters) are computed from it too.
 """
@@ -77,7 +79,16 @@ def planar_section(planar):
     return out
 
 
-def monocular_table(suite, modes=("textbook", "first_estimates", "iterated", "ideal")):
+MONOCULAR_MODES = ("textbook", "first_estimates", "iterated", "observability_constrained", "ideal",
+                   "camera_velocity/textbook", "camera_velocity/observability_constrained", "camera_velocity/ideal")
+LO6, HI6 = 1.24, 12.6  # the two-sided 95% range of one chi-square(6) sample
+
+
+def mode_name(m):
+    return m.replace("camera_velocity/", "") + " (velocity in the camera frame)" if m.startswith("camera_velocity/") else m
+
+
+def monocular_table(suite, modes=MONOCULAR_MODES):
     out = ["| pipeline | mode | NEES mean | median run | 95% bounds | fraction inside | position median run | "
            "orientation median run | convergence | e_l converged (m^2) | e_t converged (m^2) |",
            "|---|---|---|---|---|---|---|---|---|---|---|"]
@@ -86,7 +97,7 @@ def monocular_table(suite, modes=("textbook", "first_estimates", "iterated", "id
             e = suite.get(f"{key}/{m}")
             if e is None:
                 continue
-            out.append(f"| {name} | {m} | {fmt(e['nees_mean'])} | {fmt(e['nees_median_run'])} | {bounds(e)} | "
+            out.append(f"| {name} | {mode_name(m)} | {fmt(e['nees_mean'])} | {fmt(e['nees_median_run'])} | {bounds(e)} | "
                        f"{e['fraction_inside']:.3f} | {fmt(e['parts']['position']['nees_median_run'])} | "
                        f"{fmt(e['parts']['orientation']['nees_median_run'])} | {e['convergence_ratio']:.2f} | "
                        f"{fmt(e['landmark_error_converged_m2'], 3)} | {fmt(e['trajectory_error_converged_m2'], 4)} |")
@@ -181,7 +192,7 @@ def factor_section(factors):
 def findings(effects, best_cells, monocular):
     """The conclusions, each computed from the numbers above."""
     out = ["## What the experiment says", ""]
-    lo, hi = 1.24, 12.6  # the two-sided 95% range of one chi-square(6) sample
+    lo, hi = LO6, HI6
     for pipeline, name in PIPELINES:
         accel_ideal = effects[(pipeline, "accel", "ideal")]
         accel_textbook = effects[(pipeline, "accel", "textbook")]
@@ -261,13 +272,157 @@ def findings(effects, best_cells, monocular):
         out.append("5. **The iterated update on the monocular filter** (default forest; median NEES per run): " +
                    "; ".join(rows) + f". Its NEES is {verdict}.")
     out.append("")
-    out.append("What would reach the target, in the order the evidence suggests: a motion model whose noise "
-               "describes a vehicle that turns (or a velocity in the camera frame, which is constant along an "
-               "arc), chosen on forests no suite scores (`consistency --suite monocular-tuning`, forests 101 and "
-               "up; its section below tries the noise level alone); then a linearization that does not invent scale information for the textbook filter: "
-               "Jacobians constrained to leave the seven unobservable directions unobservable at the current "
-               "estimate rather than at a poor first estimate, or an error defined on the camera's pose "
-               "group (the invariant EKF) where the theory allows.")
+    return out
+
+
+def runnable_modes(suite, pipeline):
+    """The modes of `pipeline` one can run (not the ideal diagnostic), with their entries."""
+    return [(m, suite[f"{pipeline}/{m}"]) for m in MONOCULAR_MODES
+            if not m.endswith("ideal") and f"{pipeline}/{m}" in suite]
+
+
+def target_verdict(monocular, forests):
+    """The issue's monocular target, judged from the numbers for every runnable mode."""
+    out = ["## The monocular target", "",
+           f"The target: a median NEES per run inside [{LO6}, {HI6}] (the two-sided 95% range of one 6-dof sample) on "
+           "the default forest, with landmark and trajectory errors no larger than today's (the textbook filter with "
+           "the velocity in the world frame, the pipelines' default) and a convergence ratio over the 30 forests no "
+           "lower than today's. Every runnable mode is judged against each condition; the ideal filter is a "
+           "diagnostic, shown as the floor.", ""]
+    out.append("| pipeline | mode | NEES median run | convergence | e_l converged (m^2) | e_t converged (m^2) | "
+               "30 forests: NEES median run | 30 forests: convergence | verdict |")
+    out.append("|---|---|---|---|---|---|---|---|---|")
+    met_by = {}
+    for pipeline, name in PIPELINES:
+        today = monocular.get(f"{pipeline}/textbook")
+        today_forests = forests.get(f"{pipeline}/textbook")
+        if today is None or today_forests is None:
+            continue
+        rows = runnable_modes(monocular, pipeline)
+        rows += [(m, monocular[f"{pipeline}/{m}"]) for m in ("ideal", "camera_velocity/ideal") if f"{pipeline}/{m}" in monocular]
+        for m, e in rows:
+            f = forests.get(f"{pipeline}/{m}", {})
+            if m.endswith("ideal"):
+                verdict = "floor (diagnostic)"
+            else:
+                el, et = e["landmark_error_converged_m2"], e["trajectory_error_converged_m2"]
+                checks = (("NEES outside the range", LO6 <= median_nees(e) <= HI6),
+                          ("larger errors", el is not None and et is not None
+                           and el <= today["landmark_error_converged_m2"] and et <= today["trajectory_error_converged_m2"]),
+                          ("lower convergence over the forests",
+                           bool(f) and f["convergence_ratio"] >= today_forests["convergence_ratio"]))
+                failed = [w for w, ok in checks if not ok]
+                verdict = "**met**" if not failed else "not met: " + ", ".join(failed)
+                if not failed:
+                    met_by.setdefault(pipeline, []).append(m)
+            forest_conv = f"{f['convergence_ratio']:.2f}" if f else "-"
+            out.append(f"| {name} | {mode_name(m)} | {fmt(e['nees_median_run'])} | {e['convergence_ratio']:.2f} | "
+                       f"{fmt(e['landmark_error_converged_m2'], 3)} | {fmt(e['trajectory_error_converged_m2'], 4)} | "
+                       f"{fmt(f.get('nees_median_run'))} | {forest_conv} | {verdict} |")
+    out.append("")
+    for pipeline, name in PIPELINES:
+        modes = met_by.get(pipeline, [])
+        out.append(f"- **{name}**: " + (f"the target is met by {', '.join('`' + mode_name(m) + '`' for m in modes)}."
+                                         if modes else "no runnable mode meets the target."))
+    out.append("")
+    return out, met_by
+
+
+def motion_section(motion, monocular):
+    """The motion-model study on forests 101 and up: the frame of the camera's velocity."""
+    out = ["## The motion model: velocity in the world or in the camera frame (`monocular-motion`)", ""]
+    any_entry = next(iter(motion.values()))
+    out.append("`ConstantVelocity3D` can carry the camera's linear velocity in the world frame (MonoSLAM's model "
+               "and the thesis's, the default) or in the camera's own frame "
+               "(`ConstantVelocity3D::VelocityFrame::kCamera`). A camera carried along an arc at a steady speed "
+               "keeps a constant velocity in its own frame, so there the acceleration noise only has to cover "
+               "changes of speed and of heading rate; in the world frame it must also cover the turn itself. "
+               f"Each pipeline, the textbook and the ideal filter, one run on each of {any_entry['runs']} forests "
+               "(seeds 101 and up, which no other suite scores), 1 px noise, everything else at the pipelines' "
+               "defaults. Nothing was chosen from this table: the camera-frame rows of the suites above use the "
+               "default acceleration noise, 0.3 m/s^2.")
+    out.append("")
+    out.append("| pipeline | filter | velocity frame | acceleration sigma (m/s^2) | NEES median run | position median run "
+               "| orientation median run | convergence | e_t converged (m^2) | e_l converged (m^2) |")
+    out.append("|---|---|---|---|---|---|---|---|---|---|")
+    rows = {}
+    for key, e in motion.items():
+        pipeline, mode, frame, accel = key.split("/")
+        rows[(pipeline, mode, frame, float(accel.replace("accel_", "")))] = e
+    accels = sorted({k[3] for k in rows})
+    for pipeline, name in PIPELINES:
+        for mode in ("textbook", "ideal"):
+            for frame in ("world_velocity", "camera_velocity"):
+                for accel in accels:
+                    e = rows.get((pipeline, mode, frame, accel))
+                    if e is None:
+                        continue
+                    out.append(f"| {name} | {mode} | {frame.replace('_velocity', '')} | {accel:g} | "
+                               f"{fmt(e['nees_median_run'])} | {fmt(e['parts']['position']['nees_median_run'])} | "
+                               f"{fmt(e['parts']['orientation']['nees_median_run'])} | {e['convergence_ratio']:.2f} | "
+                               f"{fmt(e['trajectory_error_converged_m2'], 3)} | {fmt(e['landmark_error_converged_m2'], 3)} |")
+    out.append("")
+    # What the table says, computed.
+    lines = []
+    for pipeline, name in PIPELINES:
+        ideal_world = [median_nees(rows[(pipeline, "ideal", "world_velocity", a)]) for a in accels
+                       if (pipeline, "ideal", "world_velocity", a) in rows]
+        ideal_camera = [median_nees(rows[(pipeline, "ideal", "camera_velocity", a)]) for a in accels
+                        if (pipeline, "ideal", "camera_velocity", a) in rows]
+        tb_world = [median_nees(rows[(pipeline, "textbook", "world_velocity", a)]) for a in accels
+                    if (pipeline, "textbook", "world_velocity", a) in rows]
+        tb_camera = [median_nees(rows[(pipeline, "textbook", "camera_velocity", a)]) for a in accels
+                     if (pipeline, "textbook", "camera_velocity", a) in rows]
+        if not (ideal_world and ideal_camera and tb_world and tb_camera):
+            continue
+        inside = [a for a in accels if (pipeline, "ideal", "camera_velocity", a) in rows
+                  and LO6 <= median_nees(rows[(pipeline, "ideal", "camera_velocity", a)]) <= HI6]
+        lines.append(f"- **{name}.** The ideal filter's median NEES: {', '.join(fmt(v) for v in ideal_world)} with the "
+                     f"velocity in the world frame, {', '.join(fmt(v) for v in ideal_camera)} in the camera frame "
+                     f"(acceleration sigma {', '.join(f'{a:g}' for a in accels)} m/s^2); inside [{LO6}, {HI6}] at "
+                     + (", ".join(f"{a:g}" for a in inside) + " m/s^2" if inside else "none of them") +
+                     f". The textbook filter's: {', '.join(fmt(v) for v in tb_world)} (world) and "
+                     f"{', '.join(fmt(v) for v in tb_camera)} (camera).")
+    out += lines
+    out.append("")
+    # The default forest, paired: the same noise draws with either motion model.
+    pairs = []
+    for pipeline, name in PIPELINES:
+        for mode in ("ideal", "textbook"):
+            w, c = monocular.get(f"{pipeline}/{mode}"), monocular.get(f"{pipeline}/camera_velocity/{mode}")
+            if w is not None and c is not None:
+                pairs.append((name, mode, w, c))
+    if pairs:
+        out.append("On the default forest (the `monocular` suite above, the same noise draws for both motion models), "
+                   "the median NEES per run goes from world-frame to camera-frame velocity as: " +
+                   "; ".join(f"{name}, {mode}: {fmt(w['nees_median_run'])} -> {fmt(c['nees_median_run'])} "
+                             f"(convergence {w['convergence_ratio']:.2f} -> {c['convergence_ratio']:.2f})"
+                             for name, mode, w, c in pairs) + ".")
+        out.append("")
+        ideal_cured = all(LO6 <= median_nees(c) <= HI6 for _, mode, _, c in pairs if mode == "ideal")
+        textbook_left = all(median_nees(c) > HI6 for _, mode, _, c in pairs if mode == "textbook")
+        if ideal_cured:
+            out.append("With the velocity in the camera frame the ideal filter is consistent in every pipeline: the "
+                       "motion model's error, cause 1 above, is gone, and the floor the issue asks about is inside "
+                       "the range of one 6-dof sample.")
+        if textbook_left:
+            out.append("The textbook filter stays over-confident in every pipeline: what is left is its "
+                       "linearization (cause 2). First-estimates Jacobians do not help here (they diverge: their "
+                       "landmark Jacobians sit at the inverse-depth prior), nor does the iterated update.")
+        oc = [(name, monocular.get(f"{p}/camera_velocity/observability_constrained"), monocular.get(f"{p}/camera_velocity/textbook"))
+              for p, name in PIPELINES]
+        oc = [(name, o, t) for name, o, t in oc if o is not None and t is not None]
+        if oc:
+            inside = all(LO6 <= median_nees(o) <= HI6 for _, o, _ in oc)
+            out.append("The observability-constrained update ([filter.md](filter.md)), which removes the information the "
+                       "textbook update invents along the unobservable directions, on the same draws: " +
+                       "; ".join(f"{name}: {fmt(o['nees_median_run'])} (textbook {fmt(t['nees_median_run'])}; "
+                                 f"convergence {o['convergence_ratio']:.2f}, textbook {t['convergence_ratio']:.2f})"
+                                 for name, o, t in oc) + "." +
+                       (" With the velocity in the camera frame it is consistent in every pipeline: the two causes "
+                        "the factorial experiment found, the motion model and the linearization, are both answered."
+                        if inside else " It is not inside the range in every pipeline."))
+        out.append("")
     return out
 
 
@@ -313,6 +468,8 @@ def main():
     lines.append("")
     lines += monocular_table(suites["monocular-forests"])
     lines.append("")
+    target, _ = target_verdict(suites["monocular"], suites["monocular-forests"])
+    lines += target
     lines.append("## Why the monocular filters are over-confident: the factorial experiment (`monocular-factors`)")
     lines.append("")
     any_factor = next(iter(factors.values()))
@@ -331,6 +488,9 @@ def main():
     lines.append("")
     lines += findings(effects, best_cells, suites["monocular"])
     lines.append("")
+    if len(sys.argv) > 6:
+        lines += motion_section(json.load(open(sys.argv[6]))["monocular-motion"], suites["monocular"])
+        lines.append("")
     if len(sys.argv) > 5:
         lines += tuning_section(json.load(open(sys.argv[5]))["monocular-tuning"])
         lines.append("")

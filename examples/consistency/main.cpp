@@ -8,8 +8,9 @@
 //                      iterated, ideal.
 //   monocular          the default forest of forest_slam, 1 px noise, --runs noise draws (50),
 //                      for each tree pipeline (none, thesis, first_sight) and mode (textbook,
-//                      first_estimates, iterated, ideal). The filter's noise is the pipelines'
-//                      default (TreeSlamOptions).
+//                      first_estimates, iterated, ideal); and the textbook and ideal filters
+//                      with the camera's velocity in its own frame (<pipeline>/camera_velocity/
+//                      <mode>). The filter's noise is the pipelines' default (TreeSlamOptions).
 //   monocular-forests  forests 1..30, one run each, the same pipelines and modes.
 //   monocular-factors  the experiment behind docs/consistency.md: every combination of
 //                      linearization (textbook, ideal), the filter's pixel noise (the true 1 px
@@ -21,6 +22,9 @@
 //   monocular-tuning   the study that chooses the motion model's acceleration noise, on forests
 //                      101..100 + --forests, which no other suite scores: each pipeline, the
 //                      textbook and first-estimates filters, each of --tuning-accels.
+//   monocular-motion   the motion-model study, on the same forests: the frame of the camera's
+//                      linear velocity (world, camera) and each of --motion-accels, for each
+//                      pipeline, the textbook and the ideal filter.
 //
 // Modes: textbook = every Jacobian at the latest estimate; first_estimates = FEJ (Huang,
 // Mourikis and Roumeliotis 2010); invariant = the right-invariant EKF (Barrau and Bonnabel
@@ -94,6 +98,7 @@ constexpr Mode kPlanarModes[] = {{"textbook", LinearizationPoint::kCurrentEstima
 constexpr Mode kMonocularModes[] = {{"textbook", LinearizationPoint::kCurrentEstimate},
                                     {"first_estimates", LinearizationPoint::kFirstEstimates},
                                     {"iterated", LinearizationPoint::kIterated},
+                                    {"observability_constrained", LinearizationPoint::kObservabilityConstrained},
                                     {"ideal", LinearizationPoint::kIdeal}};
 
 struct Pipeline {
@@ -240,16 +245,36 @@ json monocularSuite(const std::vector<MonocularConfig>& configs, Scenarios scena
   return suite;
 }
 
-/// pipeline/mode for every pipeline and monocular mode, the filter's noise at its default.
+/// pipeline/mode for every pipeline and monocular mode, the filter's noise at its default; and
+/// pipeline/camera_velocity/mode, the same filter with the velocity in the camera frame
+/// (ConstantVelocity3D::VelocityFrame::kCamera) at the same noise, for the textbook and the
+/// ideal filter (first estimates diverge with either motion model: docs/consistency.md).
 std::vector<MonocularConfig> monocularModes() {
   std::vector<MonocularConfig> out;
-  for (const Pipeline& p : kPipelines)
+  for (const Pipeline& p : kPipelines) {
     for (const Mode& m : kMonocularModes) {
       forest_slam::TreeSlamOptions o;
       o.pipeline = p.pipeline;
       o.linearization = m.point;
+      // The observability-constrained filter keeps the map's position and scale uncertain, so
+      // its life cycle judges landmarks given the camera (TreeSlamOptions).
+      o.conversion_given_camera = m.point == LinearizationPoint::kObservabilityConstrained;
       out.push_back({std::string(p.name) + "/" + m.name, o});
     }
+    for (const Mode& m : kMonocularModes) {
+      if (m.point != LinearizationPoint::kCurrentEstimate && m.point != LinearizationPoint::kObservabilityConstrained &&
+          m.point != LinearizationPoint::kIdeal)
+        continue;
+      forest_slam::TreeSlamOptions o;
+      o.pipeline = p.pipeline;
+      o.linearization = m.point;
+      // The observability-constrained filter keeps the map's position and scale uncertain, so
+      // its life cycle judges landmarks given the camera (TreeSlamOptions).
+      o.conversion_given_camera = m.point == LinearizationPoint::kObservabilityConstrained;
+      o.velocity_frame = sylva::ConstantVelocity3D::VelocityFrame::kCamera;
+      out.push_back({std::string(p.name) + "/camera_velocity/" + m.name, o});
+    }
+  }
   return out;
 }
 
@@ -278,6 +303,31 @@ std::vector<MonocularConfig> monocularFactors(double raised_accel) {
                   << (raised ? "raised_accel" : "default_accel");
               out.push_back({key.str(), o});
             }
+  return out;
+}
+
+/// The motion-model study on the tuning forests (seeds 101..100 + N): the frame of the
+/// constant-velocity model's linear velocity (world or camera) and its linear acceleration
+/// noise, for every pipeline, the textbook filter and the ideal one (which shows what the
+/// motion model alone does, without linearization error).
+std::vector<MonocularConfig> monocularMotion(const std::vector<double>& accels) {
+  using Frame = sylva::ConstantVelocity3D::VelocityFrame;
+  std::vector<MonocularConfig> out;
+  for (const Pipeline& p : kPipelines)
+    for (const LinearizationPoint point : {LinearizationPoint::kCurrentEstimate, LinearizationPoint::kIdeal})
+      for (const Frame frame : {Frame::kWorld, Frame::kCamera})
+        for (const double accel : accels) {
+          forest_slam::TreeSlamOptions o;
+          o.pipeline = p.pipeline;
+          o.linearization = point;
+          o.velocity_frame = frame;
+          o.linear_accel_sigma = accel;
+          std::ostringstream key;
+          key << p.name << "/"
+              << (point == LinearizationPoint::kIdeal ? "ideal" : "textbook")
+              << "/" << (frame == Frame::kCamera ? "camera_velocity" : "world_velocity") << "/accel_" << accel;
+          out.push_back({key.str(), o});
+        }
   return out;
 }
 
@@ -331,7 +381,8 @@ int main(int argc, char** argv) {
   Settings settings;
   bool json_output = false;
   app.add_option("--suite", suites,
-                 "comma-separated: planar, monocular, monocular-forests, monocular-factors, monocular-tuning")
+                 "comma-separated: planar, monocular, monocular-forests, monocular-factors, monocular-tuning, "
+                 "monocular-motion")
       ->capture_default_str();
   app.add_option("--runs", settings.runs, "runs per ensemble (planar) or noise draws (monocular)")
       ->capture_default_str()
@@ -348,6 +399,9 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   std::vector<double> tuning_accels{0.3, 0.5, 0.75, 1.0, 1.5, 2.0};
   app.add_option("--tuning-accels", tuning_accels, "monocular-tuning: the linear acceleration sigmas (m/s^2)")
+      ->capture_default_str();
+  std::vector<double> motion_accels{0.1, 0.3, 1.0};
+  app.add_option("--motion-accels", motion_accels, "monocular-motion: the linear acceleration sigmas (m/s^2)")
       ->capture_default_str();
   bool quiet = false;
   app.add_flag("--quiet", quiet, "no progress on stderr");
@@ -374,9 +428,12 @@ int main(int argc, char** argv) {
         all[suite] = monocularSuite(monocularFactors(raised_accel), Scenarios::kDefaultForestDraws, settings.runs, settings);
       } else if (suite == "monocular-tuning") {
         all[suite] = monocularSuite(monocularTuning(tuning_accels), Scenarios::kTuningForests, settings.forests, settings);
+      } else if (suite == "monocular-motion") {
+        all[suite] = monocularSuite(monocularMotion(motion_accels), Scenarios::kTuningForests, settings.forests, settings);
       } else {
         std::cerr << "consistency: unknown suite '" << suite
-                  << "' (planar, monocular, monocular-forests, monocular-factors, monocular-tuning)\n";
+                  << "' (planar, monocular, monocular-forests, monocular-factors, monocular-tuning, "
+                     "monocular-motion)\n";
         return 2;
       }
     }

@@ -185,6 +185,27 @@ int main(int argc, char** argv) {
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
   app.add_option("--accel-noise", slam_options.linear_accel_sigma, "filter's linear acceleration sigma (m/s^2)")->capture_default_str();
+  const std::map<std::string, sylva::ConstantVelocity3D::VelocityFrame> velocity_frames{
+      {"world", sylva::ConstantVelocity3D::VelocityFrame::kWorld},
+      {"camera", sylva::ConstantVelocity3D::VelocityFrame::kCamera}};
+  app.add_option("--velocity-frame", slam_options.velocity_frame,
+                 "frame of the camera's linear velocity in the motion model: world (MonoSLAM's and the thesis's "
+                 "model) or camera (constant along an arc; docs/consistency.md)")
+      ->transform(CLI::CheckedTransformer(velocity_frames, CLI::ignore_case))
+      ->default_str("world");
+  const std::map<std::string, sylva::LinearizationPoint> linearizations{
+      {"textbook", sylva::LinearizationPoint::kCurrentEstimate},
+      {"first-estimates", sylva::LinearizationPoint::kFirstEstimates},
+      {"iterated", sylva::LinearizationPoint::kIterated},
+      {"observability-constrained", sylva::LinearizationPoint::kObservabilityConstrained}};
+  app.add_option("--linearization", slam_options.linearization,
+                 "where the filter linearizes: textbook, first-estimates, iterated or observability-constrained "
+                 "(docs/filter.md)")
+      ->transform(CLI::CheckedTransformer(linearizations, CLI::ignore_case))
+      ->default_str("textbook");
+  app.add_flag("--conversion-given-camera", slam_options.conversion_given_camera,
+               "the life cycle judges each landmark's uncertainty given the camera's state (for a consistent "
+               "filter, whose map keeps its position and scale uncertain)");
   app.add_option("--angular-accel-noise", slam_options.angular_accel_sigma, "filter's angular acceleration sigma (rad/s^2)")
       ->capture_default_str();
   app.add_option("--linearity-threshold", slam_options.linearity_threshold, "inverse depth -> XYZ below this linearity index")

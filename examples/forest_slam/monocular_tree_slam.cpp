@@ -31,7 +31,8 @@ class PhaseClock {
 
 MonocularTreeSlam::MonocularTreeSlam(const TreeSlamOptions& options, const Vec<13>& x0, const Mat<13, 13>& P0)
     : options_(options),
-      ekf_(x0, P0),
+      ekf_(sylva::ConstantVelocity3D{options.velocity_frame}.fromWorldVelocity(x0), P0,
+           sylva::ConstantVelocity3D{options.velocity_frame}),
       id_point_(options.camera),
       xyz_point_(options.camera),
       tree_width_(options.camera),
@@ -39,8 +40,8 @@ MonocularTreeSlam::MonocularTreeSlam(const TreeSlamOptions& options, const Vec<1
       init_(options.camera, options.initial_inverse_depth, options.inverse_depth_sigma),
       idr_init_(options.camera, options.initial_inverse_depth, options.inverse_depth_sigma),
       life_(options.camera,
-            sylva::LinearityIndexBelow{options.linearity_threshold},
-            sylva::PositionSigmaBelow{options.tree_position_sigma_m}),
+            sylva::LinearityIndexBelow{options.linearity_threshold, options.conversion_given_camera},
+            sylva::PositionSigmaBelow{options.tree_position_sigma_m, options.conversion_given_camera}),
       accel_noise_(sylva::Gaussian<6>::sigmas(
           (Vec<6>() << Vec<3>::Constant(options.linear_accel_sigma), Vec<3>::Constant(options.angular_accel_sigma))
               .finished())),
@@ -64,10 +65,10 @@ FrameReport MonocularTreeSlam::processFrame(double dt,
   if (profile_ != nullptr) ++profile_->frames;
   {
     PhaseClock clock(profile_ != nullptr ? &profile_->predict_s : nullptr);
-    if (ideal) ekf_.setIdealRobot(truth->camera_before);
+    if (ideal) ekf_.setIdealRobot(ekf_.robot().fromWorldVelocity(truth->camera_before));
     ekf_.predict(Vec<0>(), dt, accel_noise_);
     if (ideal) {
-      ekf_.setIdealRobot(truth->camera);
+      ekf_.setIdealRobot(ekf_.robot().fromWorldVelocity(truth->camera));
       setIdealLandmarks(*truth);
     }
   }

@@ -114,11 +114,17 @@ struct TreeSlamOptions {
   double width_sigma_px = 1.0;      ///< filter's measurement noise on w
   double linear_accel_sigma = 0.3;  ///< m/s^2, ConstantVelocity3D's noise
   double angular_accel_sigma = 0.3; ///< rad/s^2
+  /// The frame of ConstantVelocity3D's linear velocity.
+  sylva::ConstantVelocity3D::VelocityFrame velocity_frame = sylva::ConstantVelocity3D::VelocityFrame::kWorld;
   double initial_inverse_depth = 0.1;  ///< 1/m, Civera et al. 2008
   double inverse_depth_sigma = 0.5;    ///< 1/m
   double linearity_threshold = 0.1;    ///< inverse depth -> XYZ, IDR -> XYZ-R (Civera et al. 2007)
   double tree_position_sigma_m = 0.3;  ///< XYZ -> XYZ-R once the position's largest sigma is below
   double gate_probability = 0.99999;   ///< chi-square gate on each observation's NIS (0: off)
+  /// The life cycle's rules judge a landmark's uncertainty given the camera's state
+  /// (sylva::landmarkCovarianceGivenRobot) instead of its marginal: a consistent filter keeps
+  /// the map's position and scale uncertain, which the marginal includes.
+  bool conversion_given_camera = false;
   /// Where the filter takes its Jacobians. kIdeal (a diagnostic) needs the truth of every frame
   /// (`FrameTruth`).
   sylva::LinearizationPoint linearization = sylva::LinearizationPoint::kCurrentEstimate;

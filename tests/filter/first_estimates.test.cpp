@@ -148,8 +148,10 @@ struct PointRobot {
 };
 
 /// The seven directions monocular SLAM cannot observe, at camera state x: translation (3),
-/// world-frame rotation (3), scale (1).
-Mat<13, 7> unobservableDirections(const Vec<13>& x) {
+/// world-frame rotation (3), scale (1). A velocity in the camera frame does not turn with the
+/// world.
+Mat<13, 7> unobservableDirections(const Vec<13>& x,
+                                  ConstantVelocity3D::VelocityFrame frame = ConstantVelocity3D::VelocityFrame::kWorld) {
   Mat<13, 7> N = Mat<13, 7>::Zero();
   const Vec<4> q = x.segment<4>(3);
   for (int i = 0; i < 3; ++i) {
@@ -157,7 +159,7 @@ Mat<13, 7> unobservableDirections(const Vec<13>& x) {
     const Vec<3> phi = Vec<3>::Unit(i);
     N.block<3, 1>(0, 3 + i) = phi.cross(Vec<3>(x.head<3>()));
     N.block<4, 1>(3, 3 + i) = 0.5 * quaternionProduct<double>(Vec<4>(0.0, phi[0], phi[1], phi[2]), q);
-    N.block<3, 1>(7, 3 + i) = phi.cross(Vec<3>(x.segment<3>(7)));
+    if (frame == ConstantVelocity3D::VelocityFrame::kWorld) N.block<3, 1>(7, 3 + i) = phi.cross(Vec<3>(x.segment<3>(7)));
   }
   N.block<3, 1>(0, 6) = x.head<3>();
   N.block<3, 1>(7, 6) = x.segment<3>(7);
@@ -173,19 +175,27 @@ Vec<13> cameraState(const Vec<3>& r, const Vec<3>& rotation, const Vec<3>& v, co
 }  // namespace unity_filter_first_estimates
 
 TEST_CASE("first estimates: the camera's transition Jacobian carries the seven unobservable directions") {
+  using Frame = ConstantVelocity3D::VelocityFrame;
   const double dt = 0.1;
   const Vec<13> from = cameraState(Vec<3>(1.0, -2.0, 1.5), Vec<3>(0.3, -1.2, 0.4), Vec<3>(0.8, 0.4, -0.1),
                                    Vec<3>(0.05, -0.3, 0.02));
   // The new prediction from a posterior that an update moved away from `from`.
   const Vec<13> posterior = cameraState(Vec<3>(1.1, -2.05, 1.48), Vec<3>(0.32, -1.15, 0.38), Vec<3>(0.7, 0.5, -0.08),
                                         Vec<3>(0.06, -0.28, 0.0));
-  const Vec<13> to = ConstantVelocity3D()(posterior, Vec<0>(), dt);
-  const Mat<13, 13> F = ConstantVelocity3D::firstEstimatesJacobian(from, to, dt);
-  CHECK((F * unobservableDirections(from) - unobservableDirections(to)).cwiseAbs().maxCoeff() < 1e-12);
-  // The textbook Jacobian at the posterior does not.
-  Mat<13, 13> F_textbook;
-  ConstantVelocity3D()(posterior, Vec<0>(), dt, F_textbook);
-  CHECK((F_textbook * unobservableDirections(from) - unobservableDirections(to)).cwiseAbs().maxCoeff() > 1e-3);
+  for (const Frame frame : {Frame::kWorld, Frame::kCamera}) {
+    INFO((frame == Frame::kWorld ? "velocity in the world frame" : "velocity in the camera frame"));
+    const ConstantVelocity3D motion{frame};
+    const Vec<13> to = motion(posterior, Vec<0>(), dt);
+    const Mat<13, 13> F = motion.firstEstimatesJacobian(from, to, dt);
+    CHECK((F * unobservableDirections(from, frame) - unobservableDirections(to, frame)).cwiseAbs().maxCoeff() < 1e-12);
+    // The textbook Jacobian at the posterior does not.
+    Mat<13, 13> F_textbook;
+    motion(posterior, Vec<0>(), dt, F_textbook);
+    CHECK((F_textbook * unobservableDirections(from, frame) - unobservableDirections(to, frame)).cwiseAbs().maxCoeff() > 1e-3);
+    // The textbook Jacobian at any state carries the directions there into those at its
+    // prediction: the motion commutes with moving, turning and scaling the world.
+    CHECK((F_textbook * unobservableDirections(posterior, frame) - unobservableDirections(to, frame)).cwiseAbs().maxCoeff() < 1e-12);
+  }
 }
 
 TEST_CASE("first estimates: without an update in between, the camera's Jacobian is the textbook one") {
@@ -195,17 +205,19 @@ TEST_CASE("first estimates: without an update in between, the camera's Jacobian 
       cameraState(Vec<3>(1.0, -2.0, 1.5), Vec<3>(0.3, -1.2, 0.4), Vec<3>(0.8, 0.4, -0.1), Vec<3>(0.05, -0.3, 0.02)),
       cameraState(Vec<3>::Zero(), Vec<3>(0.0, 3.1, 0.0), Vec<3>::Zero(), Vec<3>(1.0, 2.0, -0.5)),  // at rest, turning
       cameraState(Vec<3>(5.0, 0.0, 0.0), Vec<3>(1e-9, 0.0, 0.0), Vec<3>(0.0, 0.0, 3.0), Vec<3>::Zero())};
-  for (const Vec<13>& x : states) {
-    Mat<13, 13> F_textbook;
-    const Vec<13> next = ConstantVelocity3D()(x, Vec<0>(), dt, F_textbook);
-    const Mat<13, 13> tangent = ConstantVelocity3D::normalizationJacobian(x);
-    const Mat<13, 13> F = ConstantVelocity3D::firstEstimatesJacobian(x, next, dt);
-    INFO("state " << x.transpose());
-    CHECK((F * tangent - F_textbook * tangent).cwiseAbs().maxCoeff() < 1e-9);
-    // ... and the textbook Jacobian agrees with numerical differentiation.
-    const Mat<13, 13> numeric = numericJacobian<13, 13>([&](const Vec<13>& y) { return ConstantVelocity3D()(y, Vec<0>(), dt); }, x);
-    CHECK((F * tangent - numeric * tangent).cwiseAbs().maxCoeff() < 1e-6);
-  }
+  for (const auto frame : {ConstantVelocity3D::VelocityFrame::kWorld, ConstantVelocity3D::VelocityFrame::kCamera})
+    for (const Vec<13>& x : states) {
+      const ConstantVelocity3D motion{frame};
+      Mat<13, 13> F_textbook;
+      const Vec<13> next = motion(x, Vec<0>(), dt, F_textbook);
+      const Mat<13, 13> tangent = ConstantVelocity3D::normalizationJacobian(x);
+      const Mat<13, 13> F = motion.firstEstimatesJacobian(x, next, dt);
+      INFO("state " << x.transpose() << (frame == ConstantVelocity3D::VelocityFrame::kCamera ? ", camera frame" : ", world frame"));
+      CHECK((F * tangent - F_textbook * tangent).cwiseAbs().maxCoeff() < 1e-9);
+      // ... and the textbook Jacobian agrees with numerical differentiation.
+      const Mat<13, 13> numeric = numericJacobian<13, 13>([&](const Vec<13>& y) { return motion(y, Vec<0>(), dt); }, x);
+      CHECK((F * tangent - numeric * tangent).cwiseAbs().maxCoeff() < 1e-6);
+    }
 }
 
 TEST_CASE("first estimates: a robot without a first-estimates Jacobian is refused") {

@@ -2,6 +2,7 @@
 
 #include <sylva/filter/ekf.hpp>
 #include <sylva/motion/constant_velocity_3d.hpp>
+#include <sylva/sim/forest_trajectory.hpp>
 #include <sylva/testing/check_jacobians.hpp>
 
 #include "sylva_catch.hpp"
@@ -62,6 +63,52 @@ TEST_CASE("ConstantVelocity3D Jacobians match numerical differentiation", "[moti
     INFO(report.message());
     CHECK(report.ok);
   }
+}
+
+TEST_CASE("ConstantVelocity3D with the velocity in the camera frame: Jacobians match numerical differentiation",
+          "[motion][jacobian]") {
+  const ConstantVelocity3D motion{ConstantVelocity3D::VelocityFrame::kCamera};
+  const Vec<4> q = Vec<4>(0.9, 0.1, -0.3, 0.2).normalized();
+  const Vec<13> cases[] = {
+      cameraState(Vec<3>(1, 2, 3), q, Vec<3>(0.5, -0.2, 0.1), Vec<3>(0.1, 0.2, -0.3)),
+      cameraState(Vec<3>(1, 2, 3), q, Vec<3>(0.5, 0, 0), Vec<3>::Zero()),           // exponential map at zero
+      cameraState(Vec<3>::Zero(), q, Vec<3>(0, 0, 2), Vec<3>(0.0, 0.0, 3.0)),       // half a turn in one step
+      cameraState(Vec<3>::Zero(), 1.7 * q, Vec<3>(1, 1, 1), Vec<3>(0.2, 0.1, 0.0)),  // quaternion off the sphere
+  };
+  for (const Vec<13>& x : cases)
+    for (const double dt : {0.1, 1.0, 0.0}) {
+      INFO("x = " << x.transpose() << ", dt = " << dt);
+      const auto report = testing::checkMotionJacobians(motion, x, Vec<0>(), dt, 1e-6);
+      INFO(report.message());
+      CHECK(report.ok);
+    }
+}
+
+TEST_CASE("ConstantVelocity3D with the velocity in the camera frame follows an arc", "[motion]") {
+  using Frame = ConstantVelocity3D::VelocityFrame;
+  // A camera looking along its direction of travel, pitched down, driving a circle of radius
+  // 5 m at 1 m/s: its velocity and angular velocity are constant in its own frame.
+  const double speed = 1.0, radius = 5.0, dt = 0.1, yaw_rate = speed / radius;
+  const Mat<3, 3> R = sim::cameraOrientation(Vec<2>(1.0, 0.0), 0.25);
+  const Eigen::Quaterniond q(R);
+  const Vec<3> v_world(speed, 0.0, 0.0);
+  const Vec<3> omega_camera = R.transpose() * Vec<3>(0.0, 0.0, yaw_rate);
+  const Vec<13> world_state = cameraState(Vec<3>(0.0, -radius, 1.5), Vec<4>(q.w(), q.x(), q.y(), q.z()), v_world, omega_camera);
+  const ConstantVelocity3D camera_frame{Frame::kCamera};
+  Vec<13> x = camera_frame.fromWorldVelocity(world_state);
+  CHECK((x.segment<3>(7) - R.transpose() * v_world).norm() < 1e-15);
+  CHECK(ConstantVelocity3D{}.fromWorldVelocity(world_state) == world_state);
+  const int steps = static_cast<int>(std::round(2.0 * kPi * radius / speed / dt));  // one lap
+  for (int k = 0; k < steps; ++k) x = camera_frame(x, Vec<0>(), dt);
+  // Back where it started, on the circle (chords of the arc: second order in yaw_rate dt).
+  const Vec<3> centre(0.0, 0.0, 1.5);
+  CHECK(std::abs((x.head<3>() - centre).norm() - radius) < 1e-3);
+  CHECK((x.head<3>() - world_state.head<3>()).norm() < 2e-2);
+  CHECK(x.segment<6>(7) == camera_frame.fromWorldVelocity(world_state).segment<6>(7));
+  // The world-frame model drives straight on from the same state.
+  Vec<13> y = world_state;
+  for (int k = 0; k < steps; ++k) y = ConstantVelocity3D{}(y, Vec<0>(), dt);
+  CHECK(y[0] == Approx(speed * steps * dt));
 }
 
 TEST_CASE("ConstantVelocity3D rejects a zero quaternion", "[motion][errors]") {

@@ -94,37 +94,51 @@ struct HasNormalizationJacobian<
     : std::true_type {};
 
 /// A robot may provide the transition Jacobian of first-estimates linearization as
-/// `static firstEstimatesJacobian(from, to)` (every Pose2D robot) or, when it depends on the
-/// step length, `static firstEstimatesJacobian(from, to, dt)` (ConstantVelocity3D).
+/// `firstEstimatesJacobian(from, to)` (every Pose2D robot; static) or, when it depends on the
+/// step length and the model's settings, `firstEstimatesJacobian(from, to, dt) const`
+/// (ConstantVelocity3D).
 template <typename Robot, typename = void>
 struct HasTwoPointFirstEstimatesJacobian : std::false_type {};
 template <typename Robot>
 struct HasTwoPointFirstEstimatesJacobian<
     Robot,
-    std::void_t<decltype(Robot::firstEstimatesJacobian(std::declval<const Vec<Robot::kDim>&>(),
-                                                       std::declval<const Vec<Robot::kDim>&>()))>>
+    std::void_t<decltype(std::declval<const Robot&>().firstEstimatesJacobian(std::declval<const Vec<Robot::kDim>&>(),
+                                                                             std::declval<const Vec<Robot::kDim>&>()))>>
     : std::true_type {};
 template <typename Robot, typename = void>
 struct HasTimedFirstEstimatesJacobian : std::false_type {};
 template <typename Robot>
 struct HasTimedFirstEstimatesJacobian<
     Robot,
-    std::void_t<decltype(Robot::firstEstimatesJacobian(std::declval<const Vec<Robot::kDim>&>(),
-                                                       std::declval<const Vec<Robot::kDim>&>(), 0.0))>>
+    std::void_t<decltype(std::declval<const Robot&>().firstEstimatesJacobian(std::declval<const Vec<Robot::kDim>&>(),
+                                                                             std::declval<const Vec<Robot::kDim>&>(), 0.0))>>
     : std::true_type {};
 template <typename Robot>
 struct HasFirstEstimatesJacobian
     : std::bool_constant<HasTwoPointFirstEstimatesJacobian<Robot>::value || HasTimedFirstEstimatesJacobian<Robot>::value> {};
 
+/// A state type that declares how the gauge of monocular SLAM moves it (core/gauge.hpp):
+/// `gaugeDirections(x)`, static for a landmark, a const member for a robot.
+template <typename T, typename = void>
+struct HasGaugeDirections : std::false_type {};
+template <typename T>
+struct HasGaugeDirections<
+    T,
+    std::void_t<decltype(std::declval<const T&>().gaugeDirections(std::declval<const Vec<T::kDim>&>()))>>
+    : std::true_type {};
+
 /// The first-estimates transition Jacobian from the prediction `from` = x_{k|k-1} to the new
 /// prediction `to` = x_{k+1|k} over `dt` seconds, through whichever form the robot has.
 template <typename Robot>
-Mat<Robot::kDim, Robot::kDim> firstEstimatesJacobian(const Vec<Robot::kDim>& from, const Vec<Robot::kDim>& to, double dt) {
+Mat<Robot::kDim, Robot::kDim> firstEstimatesJacobian(const Robot& robot,
+                                                     const Vec<Robot::kDim>& from,
+                                                     const Vec<Robot::kDim>& to,
+                                                     double dt) {
   if constexpr (HasTimedFirstEstimatesJacobian<Robot>::value) {
-    return Robot::firstEstimatesJacobian(from, to, dt);
+    return robot.firstEstimatesJacobian(from, to, dt);
   } else {
     (void)dt;
-    return Robot::firstEstimatesJacobian(from, to);
+    return robot.firstEstimatesJacobian(from, to);
   }
 }
 

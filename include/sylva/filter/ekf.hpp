@@ -37,6 +37,7 @@
 
 #include "sylva/core/error.hpp"
 #include "sylva/core/jacobian_ref.hpp"
+#include "sylva/core/gauge.hpp"
 #include "sylva/core/types.hpp"
 #include "sylva/detail/lower_rank_update.hpp"
 #include "sylva/detail/model_traits.hpp"
@@ -104,6 +105,30 @@ enum class LinearizationPoint {
   /// kPlanarPosition (Point2, TreeXYR); else setLinearizationPoint refuses it. See
   /// docs/filter.md ("Invariant EKF").
   kInvariant,
+  /// Observability-constrained updates for monocular SLAM: every Jacobian at the latest
+  /// estimate (as kCurrentEstimate), and after each update the covariance is carried from the
+  /// gauge directions at the estimate the update linearized at (x-) to those at the new
+  /// estimate (x+). N(x) is the n x 5 matrix of the directions in which moving, turning about
+  /// the vertical and scaling the world move the state (core/gauge.hpp). The update's
+  /// Jacobians satisfy H N(x-) = 0, so it adds no information along N(x-); without the
+  /// transport the next update, which sees N(x+), would find information there that no
+  /// measurement gave (the textbook EKF's over-confidence; Huang, Mourikis and Roumeliotis
+  /// 2010). The transport is P+ <- T P+ T^T with T = I + (N(x+) - N(x-)) A, where
+  /// A = (N_r^T N_r)^-1 N_r^T E_r reads the gauge part of a perturbation off the robot's
+  /// coordinates (N_r: the robot's rows of N(x-), E_r: selects them), so T N(x-) = N(x+) and
+  /// the information along N(x+) after the update is what the prior held along N(x-). This
+  /// keeps the invariant of Huang et al.'s observability-constrained EKF by moving the
+  /// covariance instead of the Jacobians; a motion model that commutes with the gauge (as
+  /// ConstantVelocity3D does) carries N(x) into N(f(x)) by its textbook Jacobian, so predict
+  /// needs nothing. Where the robot's rows are degenerate (a camera at rest) A uses all of N,
+  /// and where N^T N is singular too there is no transport. O(n^2) per update (a rank-10
+  /// correction), no allocation once the workspace has grown. Needs a robot and landmark types
+  /// that all declare `gaugeDirections` (ConstantVelocity3D; Point3, InverseDepth, TreeXYZR,
+  /// InverseDepthRadius); else setLinearizationPoint refuses it. A consistent monocular
+  /// filter keeps the map's position and scale uncertain: rules that judge a landmark's
+  /// marginal uncertainty (TreeLifeCycle's) should judge it given the robot
+  /// (landmarkCovarianceGivenRobot). See docs/filter.md ("Observability-constrained updates").
+  kObservabilityConstrained,
 };
 
 /// When the iterated update (LinearizationPoint::kIterated) stops: after `max_iterations`
@@ -202,6 +227,12 @@ class BasicEkf {
                                             detail::HasPlanarHeading<Robot>::value &&
                                             (detail::HasPlanarPosition<Landmarks_>::value && ...);
 
+  /// True when the observability-constrained update (LinearizationPoint::
+  /// kObservabilityConstrained) applies: the robot and every landmark type declare their gauge
+  /// directions.
+  static constexpr bool kObservabilityConstrainedApplies =
+      detail::HasGaugeDirections<Robot>::value && (detail::HasGaugeDirections<Landmarks_>::value && ...);
+
   /// True when `Landmark` is one of the filter's parametrizations.
   template <typename Landmark>
   static constexpr bool kHolds = (std::is_same_v<Landmark, Landmarks_> || ...);
@@ -248,7 +279,7 @@ class BasicEkf {
     if constexpr (!detail::HasFirstEstimatesJacobian<Robot>::value) {
       if (point == LinearizationPoint::kFirstEstimates)
         fail(ErrorCode::kInvalidArgument,
-             "Ekf::setLinearizationPoint: first-estimates Jacobians need a robot with a static "
+             "Ekf::setLinearizationPoint: first-estimates Jacobians need a robot with "
              "firstEstimatesJacobian(from, to) or firstEstimatesJacobian(from, to, dt), and the "
              "filter's robot type has none");
     }
@@ -258,6 +289,14 @@ class BasicEkf {
              std::string("Ekf::setLinearizationPoint: the invariant EKF needs a robot that declares "
                          "kPlanarPosition and kPlanarHeading (every Pose2D robot) and landmark types that all "
                          "declare kPlanarPosition (Point2, TreeXYR); the filter's robot is ") +
+                 Robot::kName + " and its landmark types are" + ((std::string(" ") + Landmarks_::kName) + ...));
+    }
+    if constexpr (!kObservabilityConstrainedApplies) {
+      if (point == LinearizationPoint::kObservabilityConstrained)
+        fail(ErrorCode::kInvalidArgument,
+             std::string("Ekf::setLinearizationPoint: observability-constrained updates need a robot and landmark "
+                         "types that all declare gaugeDirections (ConstantVelocity3D; Point3, InverseDepth, "
+                         "TreeXYZR, InverseDepthRadius); the filter's robot is ") +
                  Robot::kName + " and its landmark types are" + ((std::string(" ") + Landmarks_::kName) + ...));
     }
     linearization_ = point;
@@ -381,7 +420,7 @@ class BasicEkf {
     if constexpr (detail::HasFirstEstimatesJacobian<Robot>::value) {
       // FEJ: the transition Jacobian between the previous prediction and this one.
       if (linearization_ == LinearizationPoint::kFirstEstimates && next.allFinite())
-        F = detail::firstEstimatesJacobian<Robot>(RobotState(first_.template head<kRobotDim>()), next, dt);
+        F = detail::firstEstimatesJacobian(robot_, RobotState(first_.template head<kRobotDim>()), next, dt);
     }
     if (!next.allFinite() || !F.allFinite() || !G.allFinite())
       fail(ErrorCode::kNonFinite, "Ekf::predict: motion model produced a non-finite state or Jacobian");
@@ -1039,6 +1078,7 @@ class BasicEkf {
       auto delta = meanIncrement();
       delta.noalias() = K * nu;
       toInvariantIncrement(delta);
+      prepareGaugeTransport(delta);
       checkPosteriorDomain(delta);  // may throw; nothing of the filter is written yet
       mean_.head(n_) += delta;
       // A = (I - K H) P = P - K (P H^T)^T on the full matrix.
@@ -1075,6 +1115,7 @@ class BasicEkf {
         v.noalias() = L_inv * nu;
         delta.noalias() = W * v;
         toInvariantIncrement(delta);
+        prepareGaugeTransport(delta);
         checkPosteriorDomain(delta);  // may throw; nothing of the filter is written yet
         mean_.head(n_) += delta;
         detail::subtractLowerRankUpdate(P, W);  // a tiled symmetric rank-km update
@@ -1083,6 +1124,7 @@ class BasicEkf {
         const Eigen::Matrix<double, M, 1> v = llt.matrixL().solve(nu);
         delta.noalias() = PHt * v;
         toInvariantIncrement(delta);
+        prepareGaugeTransport(delta);
         checkPosteriorDomain(delta);  // may throw; nothing of the filter is written yet
         mean_.head(n_) += delta;
         // One column at a time: a fixed-size GEMV per column, one pass over half of P.
@@ -1093,6 +1135,7 @@ class BasicEkf {
       }
     }
     carryCovarianceToPosterior();
+    carryCovarianceAlongGauge();
     normalizeAll();
   }
 
@@ -1150,6 +1193,130 @@ class BasicEkf {
       a += (0.5 * cov_(h, h)) * c;
       for (int j = 0; j < n_; ++j)
         cov_.col(j).segment(j, n_ - j) += c.tail(n_ - j) * a[j] + a.tail(n_ - j) * c[j];
+    }
+  }
+
+  // ---------------------------------------------------------------- observability constrained
+
+  /// Column block k (0: N(x-)^T, 1: (N(x+) - N(x-))^T, 2: B^T) of the gauge workspace, 5 x n.
+  Eigen::Map<Eigen::Matrix<double, kGaugeDim, Eigen::Dynamic>> gaugeBlock(int k) {
+    return Eigen::Map<Eigen::Matrix<double, kGaugeDim, Eigen::Dynamic>>(
+        gauge_.data() + static_cast<Eigen::Index>(k) * kGaugeDim * n_, kGaugeDim, n_);
+  }
+
+  /// Writes N(x)^T for x = mean_ + scale * delta into `Nt`, block by block.
+  template <typename Delta, typename Out>
+  void fillGaugeDirections(const Delta& delta, double scale, Out& Nt) const {
+    if constexpr (kObservabilityConstrainedApplies) {
+      const RobotState x = mean_.template head<kRobotDim>() + scale * delta.template head<kRobotDim>();
+      Nt.template leftCols<kRobotDim>() = robot_.gaugeDirections(x).transpose();
+      for (const LandmarkSlot& s : slots_) fillSlotGauge(s, delta, scale, Nt, std::index_sequence_for<Landmarks_...>());
+    } else {
+      (void)delta;
+      (void)scale;
+      (void)Nt;
+    }
+  }
+
+  template <typename Delta, typename Out, std::size_t... I>
+  void fillSlotGauge(const LandmarkSlot& s, const Delta& delta, double scale, Out& Nt, std::index_sequence<I...>) const {
+    ((s.type_index == static_cast<int>(I)
+          ? void(Nt.template middleCols<Landmarks_::kDim>(s.offset) =
+                     Landmarks_::gaugeDirections(Vec<Landmarks_::kDim>(
+                                                     mean_.template segment<Landmarks_::kDim>(s.offset) +
+                                                     scale * delta.template segment<Landmarks_::kDim>(s.offset)))
+                         .transpose())
+          : void()),
+     ...);
+  }
+
+  /// LinearizationPoint::kObservabilityConstrained, before the mean is written: N(x-) and
+  /// dN = N(x+) - N(x-) for x+ = x- + delta, and the left inverse A = G N_a^T of the transport,
+  /// G = (N_a^T N_a)^-1. N_a is the robot's rows of N (the gauge part of a perturbation read
+  /// off the robot's coordinates; it has full rank while the camera moves), or all of N where
+  /// the robot's rows are degenerate; with both degenerate there is no transport. Grows its
+  /// workspace before the caller writes anything. A no-op in every other mode.
+  template <typename Delta>
+  void prepareGaugeTransport(const Delta& delta) {
+    gauge_active_ = false;
+    if constexpr (kObservabilityConstrainedApplies) {
+      if (linearization_ != LinearizationPoint::kObservabilityConstrained) return;
+      const Eigen::Index needed = 3 * static_cast<Eigen::Index>(kGaugeDim) * n_;
+      if (gauge_.size() < needed) gauge_.resize(needed);
+      auto Nt = gaugeBlock(0);
+      auto dNt = gaugeBlock(1);
+      fillGaugeDirections(delta, 0.0, Nt);
+      fillGaugeDirections(delta, 1.0, dNt);
+      dNt -= Nt;
+      if (!dNt.allFinite()) return;
+      const auto invert = [this](const Mat<kGaugeDim, kGaugeDim>& NtN) {
+        const Eigen::LLT<Mat<kGaugeDim, kGaugeDim>> llt(NtN);
+        if (llt.info() != Eigen::Success) return false;
+        const Vec<kGaugeDim> d = llt.matrixLLT().diagonal();
+        if (!(d.minCoeff() > 1e-6 * d.maxCoeff())) return false;
+        gauge_inverse_ = llt.solve(Mat<kGaugeDim, kGaugeDim>::Identity());
+        return gauge_inverse_.allFinite();
+      };
+      const auto N_robot = Nt.template leftCols<kRobotDim>();
+      gauge_robot_only_ = invert(N_robot * N_robot.transpose());
+      if (!gauge_robot_only_) {
+        Mat<kGaugeDim, kGaugeDim> NtN = Mat<kGaugeDim, kGaugeDim>::Zero();
+        for (int i = 0; i < n_; ++i) NtN.noalias() += Nt.col(i) * Nt.col(i).transpose();
+        if (!invert(NtN)) return;
+      }
+      gauge_active_ = true;
+    } else {
+      (void)delta;
+    }
+  }
+
+  /// LinearizationPoint::kObservabilityConstrained, after the covariance update:
+  /// P <- T P T^T with T = I + dN A (prepareGaugeTransport), so that T N(x-) = N(x+), on the
+  /// lower triangle:  B = P A^T,  C = A B,  B' = B + dN C / 2,  P <- P + dN B'^T + B' dN^T.
+  /// O(n^2) (the rank-10 correction; B costs O(n) when A reads the robot alone), no
+  /// allocation.
+  void carryCovarianceAlongGauge() {
+    if (!gauge_active_) return;
+    gauge_active_ = false;
+    const auto Nt = gaugeBlock(0);
+    const auto dNt = gaugeBlock(1);
+    auto Bt = gaugeBlock(2);
+    // Bt = N_a^T P (5 x n) from the lower triangle.
+    if (gauge_robot_only_) {
+      const Mat<kGaugeDim, kRobotDim> N_robot = Nt.template leftCols<kRobotDim>();
+      Bt.template leftCols<kRobotDim>() = N_robot * symmetricBlock<kRobotDim, kRobotDim>(0, 0);
+      for (int j = kRobotDim; j < n_; ++j) {
+        const Vec<kRobotDim> p = cov_.row(j).template head<kRobotDim>().transpose();  // P(robot, j)
+        Bt.col(j) = N_robot * p;
+      }
+    } else {
+      // Each stored P(i, j), i >= j, adds N_i P(i, j) to column j and, below the diagonal,
+      // N_j P(i, j) to column i.
+      Bt.setZero();
+      for (int j = 0; j < n_; ++j) {
+        const auto col = cov_.col(j).segment(j, n_ - j);
+        Bt.col(j).noalias() += Nt.middleCols(j, n_ - j) * col;
+        Bt.middleCols(j + 1, n_ - j - 1).noalias() += Nt.col(j) * col.tail(n_ - j - 1).transpose();
+      }
+    }
+    // B^T = G N_a^T P, and C = A P A^T = G N_a^T P N_a G.
+    for (int j = 0; j < n_; ++j) {
+      const Vec<kGaugeDim> b = gauge_inverse_ * Bt.col(j);
+      Bt.col(j) = b;
+    }
+    Mat<kGaugeDim, kGaugeDim> NtB = Mat<kGaugeDim, kGaugeDim>::Zero();
+    const int rows = gauge_robot_only_ ? kRobotDim : n_;
+    for (int i = 0; i < rows; ++i) NtB.noalias() += Nt.col(i) * Bt.col(i).transpose();
+    const Mat<kGaugeDim, kGaugeDim> C = gauge_inverse_ * NtB;
+    const Mat<kGaugeDim, kGaugeDim> C_half = 0.25 * (C + C.transpose());
+    for (int j = 0; j < n_; ++j) {
+      const Vec<kGaugeDim> b = Bt.col(j) + C_half * dNt.col(j);
+      Bt.col(j) = b;
+    }
+    for (int j = 0; j < n_; ++j) {
+      auto col = cov_.col(j).segment(j, n_ - j);
+      col.noalias() += dNt.middleCols(j, n_ - j).transpose() * Bt.col(j);
+      col.noalias() += Bt.middleCols(j, n_ - j).transpose() * dNt.col(j);
     }
   }
 
@@ -1249,6 +1416,12 @@ class BasicEkf {
   Eigen::VectorXd workspace_b_;
   Eigen::VectorXd delta_;
   Eigen::VectorXd invariant_;  ///< c and a of the invariant EKF's covariance transport (2n)
+  /// N(x-)^T, (N(x+) - N(x-))^T and B^T of the observability-constrained transport (3 x 5n).
+  Eigen::VectorXd gauge_;
+  Mat<kGaugeDim, kGaugeDim> gauge_inverse_ = Mat<kGaugeDim, kGaugeDim>::Zero();
+  bool gauge_active_ = false;      ///< the next covariance update is followed by the transport
+  bool gauge_robot_only_ = false;  ///< A reads the robot's coordinates alone
+
   detail::BatchWorkspace batch_;
 };
 

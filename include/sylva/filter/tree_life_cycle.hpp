@@ -24,6 +24,7 @@
 #include <string>
 #include <vector>
 
+#include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 
 #include "sylva/core/error.hpp"
@@ -39,11 +40,26 @@
 
 namespace sylva {
 
+/// The covariance of landmark `id` given the robot's state: P_ll - P_lx P_xx^+ P_xl (the
+/// pseudo-inverse through an LDLT, since the camera's covariance is singular along its
+/// quaternion). It leaves out what the landmark's uncertainty shares with the robot's,
+/// above all where the whole map is and how large it is (the gauge of monocular SLAM, which a
+/// consistent filter keeps uncertain and no measurement or conversion is sensitive to).
+template <typename Landmark, typename Filter>
+Mat<Landmark::kDim, Landmark::kDim> landmarkCovarianceGivenRobot(const Filter& ekf, Id id) {
+  const auto P_xl = ekf.template robotLandmarkCovariance<Landmark>(id);
+  const Eigen::LDLT<Mat<Filter::kRobotDim, Filter::kRobotDim>> ldlt(ekf.robotCovariance());
+  return ekf.template landmarkCovariance<Landmark>(id) - P_xl.transpose() * ldlt.solve(P_xl);
+}
+
 /// Inverse depth -> XYZ (and IDR -> XYZ-R) when the linearity index of the point (the base
 /// centre) seen from the current camera position is below `threshold` (0.1 is the usual
 /// value). A point with rho <= 0 (at or beyond infinity) is not ready.
 struct LinearityIndexBelow {
   double threshold = 0.1;
+  /// Take sigma_rho from the landmark's covariance given the robot's state
+  /// (landmarkCovarianceGivenRobot) rather than from its marginal.
+  bool given_robot = false;
 
   template <typename Filter>
   bool operator()(const Filter& ekf, Id id) const {
@@ -59,7 +75,8 @@ struct LinearityIndexBelow {
   bool ready(const Filter& ekf, Id id) const {
     const Vec<6> l = ekf.template landmarkMean<Landmark>(id).template head<6>();
     if (!(l[5] > 0.0)) return false;
-    const double var_rho = ekf.template landmarkCovariance<Landmark>(id)(5, 5);
+    const double var_rho = given_robot ? landmarkCovarianceGivenRobot<Landmark>(ekf, id)(5, 5)
+                                       : ekf.template landmarkCovariance<Landmark>(id)(5, 5);
     const double sigma_rho = std::sqrt(std::max(0.0, var_rho));
     return inverseDepthLinearityIndex(ekf.robotMean().template head<3>(), l, sigma_rho) < threshold;
   }
@@ -69,10 +86,14 @@ struct LinearityIndexBelow {
 /// largest eigenvalue of its 3x3 covariance) is below `max_sigma_m`.
 struct PositionSigmaBelow {
   double max_sigma_m = 0.1;
+  /// Judge the position's covariance given the robot's state (landmarkCovarianceGivenRobot)
+  /// rather than its marginal.
+  bool given_robot = false;
 
   template <typename Filter>
   bool operator()(const Filter& ekf, Id id) const {
-    const Mat<3, 3> P = ekf.template landmarkCovariance<Point3>(id);
+    const Mat<3, 3> P = given_robot ? landmarkCovarianceGivenRobot<Point3>(ekf, id)
+                                    : Mat<3, 3>(ekf.template landmarkCovariance<Point3>(id));
     const Eigen::SelfAdjointEigenSolver<Mat<3, 3>> eig(P, Eigen::EigenvaluesOnly);
     return eig.eigenvalues().maxCoeff() < max_sigma_m * max_sigma_m;
   }

@@ -22,6 +22,7 @@
 
 #include "sylva/core/angles.hpp"
 #include "sylva/core/error.hpp"
+#include "sylva/core/gauge.hpp"
 #include "sylva/core/jacobian_ref.hpp"
 #include "sylva/core/types.hpp"
 #include "sylva/landmarks/point3.hpp"
@@ -50,6 +51,19 @@ struct InverseDepth {
   }
 
   static void normalize(Eigen::Ref<Vec<6>> l) { l[3] = wrapAngle(l[3]); }
+
+  /// How moving, turning (about world z) and scaling the world move the landmark
+  /// (core/gauge.hpp): the anchor like a point, the azimuth with the turn, and the inverse
+  /// depth against the scale (the point's distance from the anchor grows with it).
+  static Mat<6, kGaugeDim> gaugeDirections(const Vec<6>& l) {
+    Mat<6, kGaugeDim> N = Mat<6, kGaugeDim>::Zero();
+    N.topLeftCorner<3, 3>().setIdentity();
+    N.block<3, 1>(0, 3) << -l.y(), l.x(), 0.0;  // e_z x anchor
+    N(3, 3) = 1.0;                               // theta
+    N.block<3, 1>(0, 4) = l.head<3>();
+    N(5, 4) = -l[5];  // rho / (1 + s)
+    return N;
+  }
 
   /// a - b with the azimuth difference wrapped to (-pi, pi].
   static Vec<6> difference(const Vec<6>& a, const Vec<6>& b) {

@@ -49,6 +49,15 @@ struct InverseDepthRadius {
   /// Wraps the azimuth theta to (-pi, pi].
   static void normalize(Eigen::Ref<Vec<7>> l) { l[3] = wrapAngle(l[3]); }
 
+  /// How moving, turning (about world z) and scaling the world move the tree
+  /// (core/gauge.hpp): the base centre as an `InverseDepth` point; kappa = r rho is the
+  /// trunk's angular size and does not change.
+  static Mat<7, kGaugeDim> gaugeDirections(const Vec<7>& l) {
+    Mat<7, kGaugeDim> N = Mat<7, kGaugeDim>::Zero();
+    N.topRows<6>() = InverseDepth::gaugeDirections(l.head<6>());
+    return N;
+  }
+
   /// a - b with the azimuth difference wrapped to (-pi, pi].
   static Vec<7> difference(const Vec<7>& a, const Vec<7>& b) {
     Vec<7> d = a - b;

@@ -6,6 +6,7 @@
 /// tree-width thesis (Sec. 3.5); measured by `sylva::TreeWidth`. The domain is r > 0: the
 /// filter rejects an update that would make a radius zero or negative (kOutOfDomain).
 
+#include "sylva/core/gauge.hpp"
 #include "sylva/core/types.hpp"
 
 namespace sylva {
@@ -14,6 +15,16 @@ struct TreeXYZR {
   static constexpr int kDim = 4;  ///< [x_m, y_m, z_m, radius_m]
   static constexpr const char* kName = "TreeXYZR";
   using Mean = Vec<4>;
+
+  /// How moving, turning (about world z) and scaling the world move the tree: its base
+  /// centre like a point, its radius with the scale (core/gauge.hpp).
+  static Mat<4, kGaugeDim> gaugeDirections(const Vec<4>& l) {
+    Mat<4, kGaugeDim> N = Mat<4, kGaugeDim>::Zero();
+    N.topLeftCorner<3, 3>().setIdentity();
+    N.block<3, 1>(0, 3) << -l.y(), l.x(), 0.0;  // e_z x c
+    N.col(4) = l;                                // c and r both scale
+    return N;
+  }
 
   /// nullptr for r > 0, else the reason (see detail::HasDomain).
   static const char* domainViolation(const Vec<4>& l) {

@@ -3,15 +3,33 @@
 /// `ConstantVelocity3D`: the free-moving camera of Davison's MonoSLAM and Civera et al.'s
 /// inverse-depth SLAM (tree-width thesis Ch. 3), state (13)
 ///
-///   x = [ r_WC (3), q_WC (4: w, x, y, z), v_W (3), omega_C (3) ]
+///   x = [ r_WC (3), q_WC (4: w, x, y, z), v (3), omega_C (3) ]
 ///
 /// position of the camera in the world, its orientation (camera -> world), its linear
-/// velocity in the world frame and its angular velocity in the camera frame. There is no
-/// control input; the noise input n = [a_W (3), alpha_C (3)] is an unknown linear and
-/// angular acceleration, constant over the step, which changes the velocities by impulses
-/// V = a dt and Omega = alpha dt:
+/// velocity and its angular velocity in the camera frame. There is no control input; the
+/// noise input n = [a (3), alpha_C (3)] is an unknown linear and angular acceleration,
+/// constant over the step, which changes the velocities by impulses V = a dt and
+/// Omega = alpha dt.
 ///
-///   r'     = r + (v + V) dt
+/// The linear velocity v is expressed in one of two frames (`velocity_frame`):
+///
+/// - `kWorld` (the default; MonoSLAM's model and the thesis's): v = v_W, and
+///
+///     r' = r + (v + V) dt,
+///
+///   so a camera that keeps its speed through a turn is accelerating, and the noise must
+///   cover that centripetal acceleration for as long as the turn lasts.
+/// - `kCamera`: v = v_C, the velocity seen from the camera, which stays constant for a camera
+///   carried by a vehicle along an arc (it turns with the camera); the noise then only has to
+///   cover changes of speed and of the direction of travel relative to the camera:
+///
+///     r' = r + R(q (x) exp((omega + Omega) dt / 2)) (v + V) dt
+///
+///   (the step taken along the orientation halfway through its rotation: the chord of an arc
+///   to second order).
+///
+/// In both,
+///
 ///   q'     = normalize( q * exp((omega + Omega) dt) )
 ///   v'     = v + V
 ///   omega' = omega + Omega
@@ -30,6 +48,7 @@
 #include <unsupported/Eigen/AutoDiff>
 
 #include "sylva/core/error.hpp"
+#include "sylva/core/gauge.hpp"
 #include "sylva/core/jacobian_ref.hpp"
 #include "sylva/core/quaternion.hpp"
 #include "sylva/core/types.hpp"
@@ -37,6 +56,10 @@
 namespace sylva {
 
 struct ConstantVelocity3D {
+  /// The frame the state's linear velocity is expressed in (see the top of this file).
+  enum class VelocityFrame { kWorld, kCamera };
+  VelocityFrame velocity_frame = VelocityFrame::kWorld;
+
   static constexpr int kDim = 13;
   static constexpr int kControlDim = 0;
   static constexpr int kNoiseDim = 6;  ///< [linear acceleration (3), angular acceleration (3)]
@@ -51,7 +74,14 @@ struct ConstantVelocity3D {
     const Vec<3, T> v = x.template segment<3>(7) + n.template head<3>() * step;
     const Vec<3, T> omega = x.template segment<3>(10) + n.template tail<3>() * step;
     Vec<13, T> next;
-    next.template head<3>() = x.template head<3>() + v * step;
+    if (velocity_frame == VelocityFrame::kWorld) {
+      next.template head<3>() = x.template head<3>() + v * step;
+    } else {
+      // The camera-frame velocity turned into the world at the middle of the step's rotation.
+      const Vec<4, T> mid =
+          quaternionProduct<T>(x.template segment<4>(3), quaternionFromRotationVector<T>(Vec<3, T>(omega * (step * T(0.5)))));
+      next.template head<3>() = x.template head<3>() + rotationMatrix<T>(Vec<4, T>(mid / mid.norm())) * v * step;
+    }
     const Vec<4, T> rotated =
         quaternionProduct<T>(x.template segment<4>(3), quaternionFromRotationVector<T>(Vec<3, T>(omega * step)));
     next.template segment<4>(3) = rotated / rotated.norm();
@@ -88,6 +118,30 @@ struct ConstantVelocity3D {
     return out;
   }
 
+  /// `x` (whose velocity is in the world frame, as the simulators give it) with its velocity in
+  /// this model's frame.
+  State fromWorldVelocity(const State& x) const {
+    if (velocity_frame == VelocityFrame::kWorld) return x;
+    State out = x;
+    out.segment<3>(7) = rotationMatrix<double>(Vec<4>(x.segment<4>(3).normalized())).transpose() * x.segment<3>(7);
+    return out;
+  }
+
+  /// How moving, turning (about world z) and scaling the world move the camera's state
+  /// (core/gauge.hpp): the position like a point, the orientation by the turn on the left
+  /// (dq = 1/2 (0, e_z) (x) q), the velocity with the scale and, in the world frame, with the
+  /// turn; the angular velocity, in the camera frame, not at all.
+  Mat<13, kGaugeDim> gaugeDirections(const State& x) const {
+    Mat<13, kGaugeDim> N = Mat<13, kGaugeDim>::Zero();
+    N.topLeftCorner<3, 3>().setIdentity();
+    N.block<3, 1>(0, 3) << -x[1], x[0], 0.0;
+    N.block<4, 1>(3, 3) = 0.5 * quaternionProduct<double>(Vec<4>(0.0, 0.0, 0.0, 1.0), Vec<4>(x.segment<4>(3)));
+    if (velocity_frame == VelocityFrame::kWorld) N.block<3, 1>(7, 3) << -x[8], x[7], 0.0;
+    N.block<3, 1>(0, 4) = x.head<3>();
+    N.block<3, 1>(7, 4) = x.segment<3>(7);
+    return N;
+  }
+
   /// Renormalizes the quaternion (after an update moved it off the unit sphere).
   static void normalize(Eigen::Ref<State> x) {
     const double q_norm = x.segment<4>(3).norm();
@@ -115,35 +169,38 @@ struct ConstantVelocity3D {
   /// Monocular SLAM cannot observe seven directions of its state: where the map is (3), how it
   /// is turned (3) and its scale (1). In this state they are, for a translation tau, a small
   /// world-frame rotation phi and a scale change s,
-  ///   dr = tau + phi x r + s r,   dq = 1/2 (0, phi) (x) q,   dv = phi x v + s v,   domega = 0.
+  ///   dr = tau + phi x r + s r,   dq = 1/2 (0, phi) (x) q,   domega = 0,
+  ///   dv = phi x v + s v (world frame)   or   dv = s v (camera frame: v turns with the camera).
   /// The textbook Jacobian at the posterior x_{k|k} carries them from the posterior to the new
   /// prediction; the measurement Jacobians of first-estimates linearization make them
   /// unobservable at the prediction x_{k|k-1} instead, and the two differ by the update, so
   /// the linearized system would "observe" them. This Jacobian carries each of the seven
   /// directions at `from` exactly into the same direction at `to`:
-  ///   dr'/dr = I,   dr'/dv = dt I + d v^T / |v|^2,   dr'/dq = -[d]x E(q),
+  ///   dr'/dr = I,   dr'/dv = J_v + d v^T / |v|^2,   dr'/dq = J_q - [d]x E(q),
   ///   dq'/dq = R_right(q^* (x) q'),   dq'/domega as the textbook Jacobian at `from`,
-  ///   dv'/dv = I + Dv v^T / |v|^2,   dv'/dq = -[Dv]x E(q),   domega'/domega = I,
-  /// with q, v, r of `from`, q' of `to`, d = r' - r - v dt and Dv = v' - v the parts of the
-  /// step the update added, and E(q) dq = 2 vec(dq (x) q^*) the world-frame rotation of a
-  /// quaternion change. (The scale terms need |v| > 0; for a camera at rest they are left out.)
-  /// Without an update in between (from = x_{k|k}), d = Dv = 0 and it is the textbook
-  /// Jacobian on the quaternion's tangent space.
-  static Mat<13, 13> firstEstimatesJacobian(const State& from, const State& to, double dt) {
+  ///   dv'/dv = I + Dv v^T / |v|^2,   domega'/domega = I,
+  ///   dv'/dq = -[Dv]x E(q) in the world frame, 0 in the camera frame,
+  /// with q, v, r of `from`, q' of `to`, J_v and J_q the textbook blocks at `from`,
+  /// d = r' - f_r(from) and Dv = v' - v the parts of the step the update added, and
+  /// E(q) dq = 2 vec(dq (x) q^*) the world-frame rotation of a quaternion change. (The scale
+  /// terms need |v| > 0; for a camera at rest they are left out.) Without an update in
+  /// between (from = x_{k|k}), d = Dv = 0 and it is the textbook Jacobian on the quaternion's
+  /// tangent space.
+  Mat<13, 13> firstEstimatesJacobian(const State& from, const State& to, double dt) const {
     Mat<13, 13> F;
-    ConstantVelocity3D()(from, Control(), dt, F);  // dq'/domega and the constant blocks
+    const State predicted = (*this)(from, Control(), dt, F);  // the textbook blocks at `from`
     const Vec<4> q = from.segment<4>(3).normalized();
     const Vec<4> q_to = to.segment<4>(3).normalized();
     const Vec<4> q_conj(q[0], -q[1], -q[2], -q[3]);
     const Vec<3> v = from.segment<3>(7);
-    const Vec<3> d = to.head<3>() - from.head<3>() - dt * v;
+    const Vec<3> d = to.head<3>() - predicted.head<3>();
     const Vec<3> dv = to.segment<3>(7) - v;
     // E(q) = 2 rows 1..3 of R_right(q^*): dq (x) q^* = R_right(q^*) dq.
     const Mat<4, 4> right_conj = quaternionRightMatrix(q_conj);
     const Mat<3, 4> E = 2.0 * right_conj.bottomRows<3>();
-    F.block<3, 4>(0, 3) = -skewSymmetric(d) * E;
+    F.block<3, 4>(0, 3) -= skewSymmetric(d) * E;
     F.block<4, 4>(3, 3) = quaternionRightMatrix(quaternionProduct<double>(q_conj, q_to));
-    F.block<3, 4>(7, 3) = -skewSymmetric(dv) * E;
+    if (velocity_frame == VelocityFrame::kWorld) F.block<3, 4>(7, 3) = -skewSymmetric(dv) * E;
     const double v2 = v.squaredNorm();
     if (v2 > 1e-18) {
       F.block<3, 3>(0, 7) += d * v.transpose() / v2;
