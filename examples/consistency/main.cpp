@@ -25,6 +25,9 @@
 //   monocular-motion   the motion-model study, on the same forests: the frame of the camera's
 //                      linear velocity (world, camera) and each of --motion-accels, for each
 //                      pipeline, the textbook and the ideal filter.
+//   monocular-gauge    on the same forests, the observability-constrained update with the
+//                      camera-frame velocity and each left inverse of its transport
+//                      (GaugeInverse: robot, whole_state), each pipeline.
 //
 // Modes: textbook = every Jacobian at the latest estimate; first_estimates = FEJ (Huang,
 // Mourikis and Roumeliotis 2010); invariant = the right-invariant EKF (Barrau and Bonnabel
@@ -331,6 +334,23 @@ std::vector<MonocularConfig> monocularMotion(const std::vector<double>& accels) 
   return out;
 }
 
+/// The left inverse of the observability-constrained update (GaugeInverse) on the tuning
+/// forests: the camera-frame velocity, the default noise, each pipeline, both inverses.
+std::vector<MonocularConfig> monocularGauge() {
+  std::vector<MonocularConfig> out;
+  for (const Pipeline& p : kPipelines)
+    for (const sylva::GaugeInverse inverse : {sylva::GaugeInverse::kRobot, sylva::GaugeInverse::kWholeState}) {
+      forest_slam::TreeSlamOptions o;
+      o.pipeline = p.pipeline;
+      o.linearization = LinearizationPoint::kObservabilityConstrained;
+      o.conversion_given_camera = true;
+      o.velocity_frame = sylva::ConstantVelocity3D::VelocityFrame::kCamera;
+      o.gauge_inverse = inverse;
+      out.push_back({std::string(p.name) + (inverse == sylva::GaugeInverse::kRobot ? "/robot" : "/whole_state"), o});
+    }
+  return out;
+}
+
 /// The process-noise study on forests no other suite scores (seeds 101..100 + N): every
 /// pipeline and the textbook and first-estimates filters, for each linear-acceleration sigma.
 std::vector<MonocularConfig> monocularTuning(const std::vector<double>& accels) {
@@ -382,7 +402,7 @@ int main(int argc, char** argv) {
   bool json_output = false;
   app.add_option("--suite", suites,
                  "comma-separated: planar, monocular, monocular-forests, monocular-factors, monocular-tuning, "
-                 "monocular-motion")
+                 "monocular-motion, monocular-gauge")
       ->capture_default_str();
   app.add_option("--runs", settings.runs, "runs per ensemble (planar) or noise draws (monocular)")
       ->capture_default_str()
@@ -428,12 +448,14 @@ int main(int argc, char** argv) {
         all[suite] = monocularSuite(monocularFactors(raised_accel), Scenarios::kDefaultForestDraws, settings.runs, settings);
       } else if (suite == "monocular-tuning") {
         all[suite] = monocularSuite(monocularTuning(tuning_accels), Scenarios::kTuningForests, settings.forests, settings);
+      } else if (suite == "monocular-gauge") {
+        all[suite] = monocularSuite(monocularGauge(), Scenarios::kTuningForests, settings.forests, settings);
       } else if (suite == "monocular-motion") {
         all[suite] = monocularSuite(monocularMotion(motion_accels), Scenarios::kTuningForests, settings.forests, settings);
       } else {
         std::cerr << "consistency: unknown suite '" << suite
                   << "' (planar, monocular, monocular-forests, monocular-factors, monocular-tuning, "
-                     "monocular-motion)\n";
+                     "monocular-motion, monocular-gauge)\n";
         return 2;
       }
     }

@@ -48,6 +48,7 @@ MonocularTreeSlam::MonocularTreeSlam(const TreeSlamOptions& options, const Vec<1
       pixel_noise_(sylva::Gaussian<2>::sigmas(Vec<2>::Constant(options.pixel_sigma_px))),
       tree_noise_(sylva::Gaussian<3>::sigmas(Vec<3>(options.pixel_sigma_px, options.pixel_sigma_px, options.width_sigma_px))) {
   ekf_.setLinearizationPoint(options.linearization);
+  ekf_.setGaugeInverse(options.gauge_inverse);
   gate_.fill(std::numeric_limits<double>::infinity());
   if (options.gate_probability > 0.0)
     for (int dim = 1; dim <= 3; ++dim) gate_[dim] = sylva::chiSquareGate(dim, options.gate_probability);

@@ -125,6 +125,8 @@ struct TreeSlamOptions {
   /// (sylva::landmarkCovarianceGivenRobot) instead of its marginal: a consistent filter keeps
   /// the map's position and scale uncertain, which the marginal includes.
   bool conversion_given_camera = false;
+  /// The left inverse of the observability-constrained update (sylva::GaugeInverse).
+  sylva::GaugeInverse gauge_inverse = sylva::GaugeInverse::kRobot;
   /// Where the filter takes its Jacobians. kIdeal (a diagnostic) needs the truth of every frame
   /// (`FrameTruth`).
   sylva::LinearizationPoint linearization = sylva::LinearizationPoint::kCurrentEstimate;

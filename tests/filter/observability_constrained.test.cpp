@@ -305,16 +305,18 @@ Mat<kGaugeDim, kGaugeDim> gaugeInformation(const Eigen::MatrixXd& P, const Eigen
 
 }  // namespace unity_observability_constrained
 
-TEMPLATE_TEST_CASE("observability constrained: the covariance is carried by T = I + dN (N_r^T N_r)^-1 N_r^T E_r",
+TEMPLATE_TEST_CASE("observability constrained: the covariance is carried by T = I + dN A, A N = I",
                    "[filter][gauge]", (Ekf<HeadingRobot, Point3>), (JosephEkf<HeadingRobot, Point3>)) {
   const auto noise = Gaussian<2>::sigmas(Vec<2>(0.02, 0.03));
   const std::vector<Observation<BodyBearing>> batch = {
       {0, Vec<2>(0.12, 0.06), noise}, {2, Vec<2>(0.41, 0.09), noise}, {3, Vec<2>(1.92, 0.03), noise}};
+  for (const GaugeInverse inverse : {GaugeInverse::kRobot, GaugeInverse::kWholeState})
   for (const bool batched : {false, true}) {
-    INFO((batched ? "batched update" : "single update"));
+    INFO((batched ? "batched update" : "single update") << (inverse == GaugeInverse::kRobot ? ", robot's inverse" : ", whole state's inverse"));
     TestType textbook = toyGaugeFilter<TestType>();
     TestType constrained = textbook;
     constrained.setLinearizationPoint(LinearizationPoint::kObservabilityConstrained);
+    constrained.setGaugeInverse(inverse);
     const Eigen::VectorXd prior = textbook.mean();
     if (batched) {
       textbook.update(BodyBearing{}, batch);
@@ -329,7 +331,10 @@ TEMPLATE_TEST_CASE("observability constrained: the covariance is carried by T = 
     const Eigen::MatrixXd dN = toyGaugeOf(textbook, textbook.mean()) - N;
     const Eigen::MatrixXd N_r = N.topRows<7>();
     Eigen::MatrixXd A = Eigen::MatrixXd::Zero(kGaugeDim, N.rows());
-    A.leftCols<7>() = (N_r.transpose() * N_r).inverse() * N_r.transpose();
+    if (inverse == GaugeInverse::kRobot)
+      A.leftCols<7>() = (N_r.transpose() * N_r).inverse() * N_r.transpose();
+    else
+      A = (N.transpose() * N).inverse() * N.transpose();
     const Eigen::MatrixXd T = Eigen::MatrixXd::Identity(N.rows(), N.rows()) + dN * A;
     CHECK((T * N - (N + dN)).cwiseAbs().maxCoeff() < 1e-12);
     const Eigen::MatrixXd expected = T * textbook.covariance() * T.transpose();

@@ -115,7 +115,8 @@ enum class LinearizationPoint {
   /// measurement gave (the textbook EKF's over-confidence; Huang, Mourikis and Roumeliotis
   /// 2010). The transport is P+ <- T P+ T^T with T = I + (N(x+) - N(x-)) A, where
   /// A = (N_r^T N_r)^-1 N_r^T E_r reads the gauge part of a perturbation off the robot's
-  /// coordinates (N_r: the robot's rows of N(x-), E_r: selects them), so T N(x-) = N(x+) and
+  /// coordinates (N_r: the robot's rows of N(x-), E_r: selects them; `setGaugeInverse` can
+  /// make it the whole state's, GaugeInverse), so T N(x-) = N(x+) and
   /// the information along N(x+) after the update is what the prior held along N(x-). This
   /// keeps the invariant of Huang et al.'s observability-constrained EKF by moving the
   /// covariance instead of the Jacobians; a motion model that commutes with the gauge (as
@@ -137,6 +138,17 @@ enum class LinearizationPoint {
 struct IteratedUpdate {
   int max_iterations = 10;
   double tolerance = 1e-3;
+};
+
+/// Where the observability-constrained update (LinearizationPoint::kObservabilityConstrained)
+/// reads the unobservable part of a correction: the left inverse A of the gauge directions N
+/// in its covariance transport T = I + dN A.
+enum class GaugeInverse {
+  /// A = (N_r^T N_r)^-1 N_r^T on the robot's coordinates alone (the default): the landmarks'
+  /// covariance moves with the robot's. Falls back to kWholeState for a camera at rest.
+  kRobot,
+  /// A = (N^T N)^-1 N^T over the whole state, every coordinate weighed alike.
+  kWholeState,
 };
 
 /// How `update(model, observations, fusion)` fuses a range of observations.
@@ -315,6 +327,10 @@ class BasicEkf {
     iterated_ = settings;
   }
   const IteratedUpdate& iteratedUpdate() const { return iterated_; }
+
+  /// The left inverse of the observability-constrained update's transport (GaugeInverse).
+  void setGaugeInverse(GaugeInverse inverse) { gauge_inverse_choice_ = inverse; }
+  GaugeInverse gaugeInverse() const { return gauge_inverse_choice_; }
 
   /// The robot's true state, for LinearizationPoint::kIdeal: predict linearizes the motion
   /// about it, and updates the measurement models. Each predict uses it up, so hand
@@ -1258,7 +1274,7 @@ class BasicEkf {
         return gauge_inverse_.allFinite();
       };
       const auto N_robot = Nt.template leftCols<kRobotDim>();
-      gauge_robot_only_ = invert(N_robot * N_robot.transpose());
+      gauge_robot_only_ = gauge_inverse_choice_ == GaugeInverse::kRobot && invert(N_robot * N_robot.transpose());
       if (!gauge_robot_only_) {
         Mat<kGaugeDim, kGaugeDim> NtN = Mat<kGaugeDim, kGaugeDim>::Zero();
         for (int i = 0; i < n_; ++i) NtN.noalias() += Nt.col(i) * Nt.col(i).transpose();
@@ -1421,6 +1437,7 @@ class BasicEkf {
   Mat<kGaugeDim, kGaugeDim> gauge_inverse_ = Mat<kGaugeDim, kGaugeDim>::Zero();
   bool gauge_active_ = false;      ///< the next covariance update is followed by the transport
   bool gauge_robot_only_ = false;  ///< A reads the robot's coordinates alone
+  GaugeInverse gauge_inverse_choice_ = GaugeInverse::kRobot;
 
   detail::BatchWorkspace batch_;
 };
