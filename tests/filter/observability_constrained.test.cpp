@@ -25,6 +25,7 @@
 #include <sylva/motion/unicycle_2d.hpp>
 #include <sylva/sim/forest_trajectory.hpp>
 
+#include "../copy_init.hpp"
 #include "../filter_snapshot.hpp"
 #include "sylva_catch.hpp"
 
@@ -259,19 +260,6 @@ struct BodyBearing {
   }
 };
 
-/// A landmark placed where it is measured, independent of the robot (for building priors).
-struct PlacePoint {
-  using Robot = HeadingRobot;
-  using Landmark = Point3;
-  static constexpr int kMeasurementDim = 3;
-  static constexpr const char* kName = "PlacePoint";
-  Vec<3> operator()(const Vec<7>&, const Vec<3>& z, JacobianRef<3, 7> J_l_x = {}, JacobianRef<3, 3> J_l_z = {}) const {
-    if (J_l_x) (*J_l_x).setZero();
-    if (J_l_z) (*J_l_z).setIdentity();
-    return z;
-  }
-};
-
 const Vec<3> kToyPoints[] = {{6.0, 1.0, 0.5}, {4.0, -3.0, -0.5}, {8.0, 4.0, 1.0}, {-2.0, 5.0, 0.2}};
 
 /// A filter with a correlated prior over the robot and four points.
@@ -283,7 +271,7 @@ Filter toyGaugeFilter() {
   P0(3, 3) = 0.004;
   P0(0, 4) = P0(4, 0) = 0.003;
   Filter ekf(x0, P0);
-  for (int i = 0; i < 4; ++i) ekf.add(i, PlacePoint{}, kToyPoints[i], Gaussian<3>::sigmas(Vec<3>(0.5, 0.4, 0.3)));
+  for (int i = 0; i < 4; ++i) ekf.add(i, sylva_test::CopyInit<HeadingRobot, Point3>{}, kToyPoints[i], Gaussian<3>::sigmas(Vec<3>(0.5, 0.4, 0.3)));
   // Correlate the map with the robot: a few textbook updates.
   for (int i = 0; i < 4; ++i) ekf.update(BodyBearing{}, i, BodyBearing{}.predict<double>(ekf.robotMean(), kToyPoints[i]) + Vec<2>(0.01, -0.02),
                                          Gaussian<2>::sigmas(Vec<2>(0.02, 0.02)));

@@ -5,6 +5,7 @@
 #include <sylva/sim/forest_trajectory.hpp>
 #include <sylva/testing/check_jacobians.hpp>
 
+#include "../copy_init.hpp"
 #include "sylva_catch.hpp"
 
 using namespace sylva;
@@ -150,17 +151,6 @@ struct QuaternionSensor {
     return x.template segment<4>(3);
   }
 };
-struct Point3StubInit {
-  using Robot = ConstantVelocity3D;
-  using Landmark = Point3Stub;
-  static constexpr int kMeasurementDim = 3;
-  static constexpr const char* kName = "Point3StubInit";
-  Vec<3> operator()(const Vec<13>&, const Vec<3>& z, JacobianRef<3, 13> J_l_x = {}, JacobianRef<3, 3> J_l_z = {}) const {
-    if (J_l_x) (*J_l_x).setZero();
-    if (J_l_z) (*J_l_z).setIdentity();
-    return z;
-  }
-};
 }  // namespace
 
 TEST_CASE("an update renormalizes the quaternion and projects its covariance", "[motion][filter]") {
@@ -169,7 +159,7 @@ TEST_CASE("an update renormalizes the quaternion and projects its covariance", "
   Mat<13, 13> P0 = Mat<13, 13>::Identity() * 0.01;
   P0.block<4, 4>(3, 3) = (Mat<4, 4>::Identity() - q * q.transpose()) * 0.01;  // tangent to the sphere
   Ekf<ConstantVelocity3D, Point3Stub> ekf(x0, P0);
-  ekf.add(1, Point3StubInit{}, Vec<3>(1, 2, 3), Gaussian<3>::sigmas(Vec<3>::Constant(0.1)));
+  ekf.add(1, sylva_test::CopyInit<ConstantVelocity3D, Point3Stub>{}, Vec<3>(1, 2, 3), Gaussian<3>::sigmas(Vec<3>::Constant(0.1)));
   // A measured quaternion off the unit sphere pulls the mean off it before renormalization.
   ekf.update(QuaternionSensor{}, 1, Vec<4>(1.2 * q + Vec<4>(0.0, 0.05, 0.0, 0.0)),
              Gaussian<4>::sigmas(Vec<4>::Constant(0.05)));

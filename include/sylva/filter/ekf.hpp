@@ -300,16 +300,16 @@ class BasicEkf {
         fail(ErrorCode::kInvalidArgument,
              std::string("Ekf::setLinearizationPoint: the invariant EKF needs a robot that declares "
                          "kPlanarPosition and kPlanarHeading (every Pose2D robot) and landmark types that all "
-                         "declare kPlanarPosition (Point2, TreeXYR); the filter's robot is ") +
-                 Robot::kName + " and its landmark types are" + ((std::string(" ") + Landmarks_::kName) + ...));
+                         "declare kPlanarPosition (Point2, TreeXYR); ") +
+                 typesNamed());
     }
     if constexpr (!kObservabilityConstrainedApplies) {
       if (point == LinearizationPoint::kObservabilityConstrained)
         fail(ErrorCode::kInvalidArgument,
              std::string("Ekf::setLinearizationPoint: observability-constrained updates need a robot and landmark "
                          "types that all declare gaugeDirections (ConstantVelocity3D; Point3, InverseDepth, "
-                         "TreeXYZR, InverseDepthRadius); the filter's robot is ") +
-                 Robot::kName + " and its landmark types are" + ((std::string(" ") + Landmarks_::kName) + ...));
+                         "TreeXYZR, InverseDepthRadius); ") +
+                 typesNamed());
     }
     linearization_ = point;
   }
@@ -771,6 +771,12 @@ class BasicEkf {
   }
 
  private:
+  /// "the filter's robot is R and its landmark types are A B ...", for refusals.
+  static std::string typesNamed() {
+    return std::string("the filter's robot is ") + Robot::kName + " and its landmark types are" +
+           ((std::string(" ") + Landmarks_::kName) + ...);
+  }
+
   /// Gauss-Newton iterations of a batched update (LinearizationPoint::kIterated; Bell and
   /// Cathey 1993): with the prior x and the Jacobians H_i at the iterate x_i,
   ///   x_{i+1} = x + K_i (z - h(x_i) - H_i (x - x_i)),   K_i = P H_i^T (H_i P H_i^T + R)^-1,
