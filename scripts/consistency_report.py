@@ -329,6 +329,91 @@ def target_verdict(monocular, forests):
     return out, met_by
 
 
+def binomial_two_sided(k, n):
+    """Exact two-sided p of k successes in n fair trials (the sign test, McNemar's exact test)."""
+    if n == 0:
+        return 1.0
+    tail = sum(math.comb(n, i) for i in range(0, min(k, n - k) + 1)) / 2 ** n
+    return min(1.0, 2 * tail)
+
+
+def median_interval(values, level=0.95):
+    """The median and its distribution-free confidence interval from order statistics."""
+    v = sorted(values)
+    n = len(v)
+    if n == 0:
+        return math.nan, math.nan, math.nan
+    k = 0
+    while k + 1 <= n and sum(math.comb(n, i) for i in range(0, k + 1)) / 2 ** n <= (1 - level) / 2:
+        k += 1
+    lo, hi = (v[k - 1], v[n - k]) if k >= 1 else (v[0], v[-1])
+    return statistics.median(v), lo, hi
+
+
+def manifold_section(manifold):
+    """The camera on its manifold against its quaternion, paired run by run on forests 101 and up."""
+    any_entry = next(iter(manifold.values()))
+    out = ["## The camera on its manifold (`monocular-manifold`)", "",
+           "`OnManifold<ConstantVelocity3D>` keeps the camera's covariance on its 12-dimensional tangent and moves "
+           "the camera through ⊕ in each update ([filter.md](filter.md), \"Robots on manifolds\"); the quaternion "
+           "filter keeps the quaternion's four entries in the covariance and renormalizes after each update. Both "
+           f"with the velocity in the camera frame, one run on each of {any_entry['runs']} forests (seeds 101 and "
+           "up, which no other suite scores), the same scenarios for both, so they are compared run by run:", "",
+           "| pipeline | filter | camera state | NEES median run | position | orientation | convergence | "
+           "e_l converged (m^2) | e_t converged (m^2) |",
+           "|---|---|---|---|---|---|---|---|---|"]
+    for pipeline, name in PIPELINES:
+        for mode in ("textbook", "observability_constrained"):
+            for state in ("quaternion", "manifold"):
+                e = manifold.get(f"{pipeline}/{mode}/{state}")
+                if e is None:
+                    continue
+                out.append(f"| {name} | {mode} | {state} | {fmt(e['nees_median_run'])} | "
+                           f"{fmt(e['parts']['position']['nees_median_run'])} | "
+                           f"{fmt(e['parts']['orientation']['nees_median_run'])} | {e['convergence_ratio']:.2f} | "
+                           f"{fmt(e['landmark_error_converged_m2'], 3)} | {fmt(e['trajectory_error_converged_m2'], 4)} |")
+    out.append("")
+    out.append("Paired, forest by forest: how many converge with one camera state and not the other (McNemar's "
+               "exact test), and the ratio of each run's time-averaged pose NEES, manifold over quaternion, over the "
+               "runs where both are finite (median with its distribution-free 95% interval; sign test of ratio = 1):")
+    out.append("")
+    out.append("| pipeline | filter | converged: manifold only | quaternion only | McNemar p | NEES ratio median "
+               "[95% interval] | runs | sign test p |")
+    out.append("|---|---|---|---|---|---|---|---|")
+    agree = []
+    for pipeline, name in PIPELINES:
+        for mode in ("textbook", "observability_constrained"):
+            q = manifold.get(f"{pipeline}/{mode}/quaternion")
+            m = manifold.get(f"{pipeline}/{mode}/manifold")
+            if q is None or m is None or "run_nees" not in q:
+                continue
+            only_m = sum(1 for a, b in zip(m["run_converged"], q["run_converged"]) if a and not b)
+            only_q = sum(1 for a, b in zip(m["run_converged"], q["run_converged"]) if b and not a)
+            ratios = [a / b for a, b in zip(m["run_nees"], q["run_nees"])
+                      if a is not None and b is not None and b > 0 and math.isfinite(a) and math.isfinite(b)]
+            med, lo, hi = median_interval(ratios)
+            above = sum(1 for r in ratios if r > 1)
+            below = sum(1 for r in ratios if r < 1)
+            out.append(f"| {name} | {mode} | {only_m} | {only_q} | {binomial_two_sided(only_m, only_m + only_q):.3f} | "
+                       f"{fmt(med, 3)} [{fmt(lo, 3)}, {fmt(hi, 3)}] | {len(ratios)} | "
+                       f"{binomial_two_sided(below, above + below):.3f} |")
+            agree.append(only_m == 0 and only_q == 0 and 0.98 <= lo and hi <= 1.02)
+    out.append("")
+    if agree and all(agree):
+        out.append("The two camera states agree run by run: the same forests converge, and each run's NEES moves by "
+                   "less than 2% (the intervals above). The tangent covariance does not change what the filters "
+                   "estimate or how consistent they are: the quaternion filter's normalization Jacobian already "
+                   "keeps its covariance on the tangent to first order, so the over-confidence of the textbook "
+                   "filter comes from its linearization (sections above), not from the quaternion. The manifold "
+                   "state is the cleaner covariance (six degrees of freedom of pose, no singular direction to "
+                   "carry).")
+    else:
+        out.append("The two camera states differ in at least one pipeline and filter beyond 2% of the NEES or in "
+                   "which forests converge: see the paired table.")
+    out.append("")
+    return out
+
+
 def gauge_section(gauge):
     """The two left inverses of the observability-constrained transport, on forests 101 and up."""
     any_entry = next(iter(gauge.values()))
@@ -535,6 +620,8 @@ def main():
         lines.append("")
         if "monocular-gauge" in motion_file:
             lines += gauge_section(motion_file["monocular-gauge"])
+        if "monocular-manifold" in motion_file:
+            lines += manifold_section(motion_file["monocular-manifold"])
     if len(sys.argv) > 5:
         lines += tuning_section(json.load(open(sys.argv[5]))["monocular-tuning"])
         lines.append("")

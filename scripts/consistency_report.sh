@@ -5,7 +5,7 @@
 #   2. consistency --suite planar,monocular,monocular-forests --json,
 #      consistency --suite monocular-factors --runs FACTOR_RUNS --json and
 #      consistency --suite monocular-tuning --json and
-#      consistency --suite monocular-motion,monocular-gauge --json (THREADS threads),
+#      consistency --suite monocular-motion,monocular-gauge,monocular-manifold --json (THREADS threads),
 #   3. scripts/consistency_report.py, which writes the page from the four JSON files (kept in
 #      BUILD_DIR).
 # About 40 minutes on 2 cores. Usage: bash scripts/consistency_report.sh [BUILD_DIR]
@@ -38,7 +38,7 @@ program="${build_dir}/examples/consistency/consistency"
 "${program}" --suite planar,monocular,monocular-forests --threads "${threads}" --json > "${build_dir}/consistency_suites.json"
 "${program}" --suite monocular-factors --runs "${factor_runs}" --raised-accel "${raised_accel}" --threads "${threads}" --json > "${build_dir}/consistency_factors.json"
 "${program}" --suite monocular-tuning --threads "${threads}" --json > "${build_dir}/consistency_tuning.json"
-"${program}" --suite monocular-motion,monocular-gauge --threads "${threads}" --json > "${build_dir}/consistency_motion.json"
+"${program}" --suite monocular-motion,monocular-gauge,monocular-manifold --threads "${threads}" --json > "${build_dir}/consistency_motion.json"
 python3 "${root}/scripts/consistency_report.py" "${build_dir}/consistency_suites.json" \
   "${build_dir}/consistency_factors.json" "bash scripts/consistency_report.sh" "${raised_accel}" \
   "${build_dir}/consistency_tuning.json" "${build_dir}/consistency_motion.json" > "${root}/docs/consistency.md"

@@ -28,6 +28,12 @@
 //   monocular-gauge    on the same forests, the observability-constrained update with the
 //                      camera-frame velocity and each left inverse of its transport
 //                      (GaugeInverse: robot, whole_state), each pipeline.
+//   monocular-manifold on the same forests, the camera's state on its manifold
+//                      (OnManifold<ConstantVelocity3D>, covariance on the 12-dimensional
+//                      tangent) against its quaternion's four entries (<pipeline>/<mode>/
+//                      manifold, .../quaternion), the camera-frame velocity, the textbook and
+//                      the observability-constrained filter; each entry lists run_nees and
+//                      run_converged for the paired comparison.
 //
 // Modes: textbook = every Jacobian at the latest estimate; first_estimates = FEJ (Huang,
 // Mourikis and Roumeliotis 2010); invariant = the right-invariant EKF (Barrau and Bonnabel
@@ -216,6 +222,12 @@ json monocularEntry(const consistency::MonocularEnsemble& e) {
   j["convergence_ratio"] = static_cast<double>(e.converged) / e.runs;
   j["landmark_error_converged_m2"] = e.converged > 0 ? number(e.landmark_error_sum / e.converged) : json(nullptr);
   j["trajectory_error_converged_m2"] = e.converged > 0 ? number(e.trajectory_error_sum / e.converged) : json(nullptr);
+  // Each run's time-averaged pose NEES and its convergence, in run order: the suites run the
+  // same scenarios for every mode, so two modes compare run by run (paired).
+  json run_nees = json::array();
+  for (const double v : e.pose.runAverages()) run_nees.push_back(number(v));
+  j["run_nees"] = run_nees;
+  j["run_converged"] = e.converged_by_run;
   return j;
 }
 
@@ -351,6 +363,29 @@ std::vector<MonocularConfig> monocularGauge() {
   return out;
 }
 
+/// The camera's state on its manifold (OnManifold<ConstantVelocity3D>: covariance on the
+/// 12-dimensional tangent, updates through plus) against its quaternion's four entries, on the
+/// tuning forests: each pipeline, the camera-frame velocity, the textbook and the
+/// observability-constrained filter.
+std::vector<MonocularConfig> monocularManifold() {
+  std::vector<MonocularConfig> out;
+  for (const Pipeline& p : kPipelines)
+    for (const LinearizationPoint point : {LinearizationPoint::kCurrentEstimate, LinearizationPoint::kObservabilityConstrained})
+      for (const bool manifold : {false, true}) {
+        forest_slam::TreeSlamOptions o;
+        o.pipeline = p.pipeline;
+        o.linearization = point;
+        o.conversion_given_camera = point == LinearizationPoint::kObservabilityConstrained;
+        o.velocity_frame = sylva::ConstantVelocity3D::VelocityFrame::kCamera;
+        o.camera_on_manifold = manifold;
+        out.push_back({std::string(p.name) + "/" +
+                           (point == LinearizationPoint::kCurrentEstimate ? "textbook" : "observability_constrained") +
+                           (manifold ? "/manifold" : "/quaternion"),
+                       o});
+      }
+  return out;
+}
+
 /// The process-noise study on forests no other suite scores (seeds 101..100 + N): every
 /// pipeline and the textbook and first-estimates filters, for each linear-acceleration sigma.
 std::vector<MonocularConfig> monocularTuning(const std::vector<double>& accels) {
@@ -402,7 +437,7 @@ int main(int argc, char** argv) {
   bool json_output = false;
   app.add_option("--suite", suites,
                  "comma-separated: planar, monocular, monocular-forests, monocular-factors, monocular-tuning, "
-                 "monocular-motion, monocular-gauge")
+                 "monocular-motion, monocular-gauge, monocular-manifold")
       ->capture_default_str();
   app.add_option("--runs", settings.runs, "runs per ensemble (planar) or noise draws (monocular)")
       ->capture_default_str()
@@ -450,12 +485,14 @@ int main(int argc, char** argv) {
         all[suite] = monocularSuite(monocularTuning(tuning_accels), Scenarios::kTuningForests, settings.forests, settings);
       } else if (suite == "monocular-gauge") {
         all[suite] = monocularSuite(monocularGauge(), Scenarios::kTuningForests, settings.forests, settings);
+      } else if (suite == "monocular-manifold") {
+        all[suite] = monocularSuite(monocularManifold(), Scenarios::kTuningForests, settings.forests, settings);
       } else if (suite == "monocular-motion") {
         all[suite] = monocularSuite(monocularMotion(motion_accels), Scenarios::kTuningForests, settings.forests, settings);
       } else {
         std::cerr << "consistency: unknown suite '" << suite
                   << "' (planar, monocular, monocular-forests, monocular-factors, monocular-tuning, "
-                     "monocular-motion, monocular-gauge)\n";
+                     "monocular-motion, monocular-gauge, monocular-manifold)\n";
         return 2;
       }
     }

@@ -14,6 +14,7 @@
 // trajectory errors after similarity alignment and convergence (forest_run.hpp).
 
 #include <array>
+#include <vector>
 #include <cstdint>
 #include <string>
 
@@ -36,6 +37,7 @@ struct MonocularEnsemble {
   std::array<sylva::NisTally, 4> nis = forest_slam::FrameReport::emptyNisTallies();
   int runs = 0;
   int converged = 0;
+  std::vector<bool> converged_by_run;  ///< each run's convergence, in run order (paired comparisons)
   double landmark_error_sum = 0.0;    ///< e_l (m^2) over converged runs
   double trajectory_error_sum = 0.0;  ///< e_t (m^2) over converged runs
 };
@@ -63,6 +65,8 @@ inline void addMonocularRun(const forest_slam::RunResult& r, int run, MonocularE
   }
   for (std::size_t t = 0; t < 4; ++t) out.nis[t].merge(r.nis[t]);
   ++out.runs;
+  if (static_cast<int>(out.converged_by_run.size()) <= run) out.converged_by_run.resize(static_cast<std::size_t>(run) + 1, false);
+  out.converged_by_run[static_cast<std::size_t>(run)] = r.converged;
   if (r.converged) {
     ++out.converged;
     out.landmark_error_sum += r.landmark_error;

@@ -9,17 +9,6 @@
 
 namespace forest_slam {
 
-std::vector<std::pair<Id, Vec<3>>> euclideanLandmarks(const MonocularTreeSlam::Filter& ekf) {
-  std::vector<std::pair<Id, Vec<3>>> out;
-  for (const auto& s : ekf.slots()) {
-    if (ekf.holds<sylva::Point3>(s.id))
-      out.emplace_back(s.id, ekf.landmarkMean<sylva::Point3>(s.id));
-    else if (ekf.holds<sylva::TreeXYZR>(s.id))
-      out.emplace_back(s.id, ekf.landmarkMean<sylva::TreeXYZR>(s.id).head<3>());
-  }
-  return out;
-}
-
 std::pair<sylva::eval::Similarity3, double> alignMap(
     const std::vector<std::pair<Id, Vec<3>>>& estimated,
     const sylva::sim::ForestScenario& scenario) {
@@ -32,7 +21,8 @@ std::pair<sylva::eval::Similarity3, double> alignMap(
   return {T, sylva::eval::meanSquaredError(T, est, truth)};
 }
 
-PoseNees cameraPoseNees(const Vec<13>& estimate, const Mat<13, 13>& P, const Vec<13>& truth) {
+template <int N>
+PoseNees cameraPoseNees(const Vec<13>& estimate, const Mat<N, N>& P, const Vec<13>& truth) {
   const auto orInfinity = [](auto&& f) {
     try {
       return f();
@@ -43,7 +33,11 @@ PoseNees cameraPoseNees(const Vec<13>& estimate, const Mat<13, 13>& P, const Vec
   const double inf = std::numeric_limits<double>::infinity();
   sylva::CameraPoseError err;
   try {
-    err = sylva::cameraPoseError(estimate, P, truth);
+    if constexpr (N == 12) {
+      err = sylva::cameraPoseErrorOnManifold(estimate, P, truth);
+    } else {
+      err = sylva::cameraPoseError(estimate, P, truth);
+    }
   } catch (const sylva::Error&) {
     return {inf, inf, inf};
   }
@@ -52,16 +46,22 @@ PoseNees cameraPoseNees(const Vec<13>& estimate, const Mat<13, 13>& P, const Vec
           orInfinity([&] { return sylva::nees(Vec<3>(err.e.tail<3>()), Mat<3, 3>(err.S.bottomRightCorner<3, 3>())); })};
 }
 
-RunResult runForestSlam(const sylva::sim::ForestScenario& scenario,
-                        const TreeSlamOptions& options,
-                        int max_frames,
-                        int nees_every,
-                        RunTrace* trace) {
+template PoseNees cameraPoseNees<12>(const Vec<13>&, const Mat<12, 12>&, const Vec<13>&);
+template PoseNees cameraPoseNees<13>(const Vec<13>&, const Mat<13, 13>&, const Vec<13>&);
+
+namespace {
+
+template <typename Slam>
+RunResult runWith(const sylva::sim::ForestScenario& scenario,
+                  const TreeSlamOptions& options,
+                  int max_frames,
+                  int nees_every,
+                  RunTrace* trace) {
   RunResult result;
   const auto& frames = scenario.frames;
   const int n_frames = std::min<int>(static_cast<int>(frames.size()),
                                      max_frames > 0 ? max_frames : static_cast<int>(frames.size()));
-  MonocularTreeSlam slam(options, frames.front().state, initialCameraCovariance());
+  Slam slam(options, frames.front().state, initialCameraCovariance());
 
   std::vector<Vec<3>> estimated_path;
   estimated_path.reserve(static_cast<std::size_t>(n_frames));
@@ -80,7 +80,7 @@ RunResult runForestSlam(const sylva::sim::ForestScenario& scenario,
     result.rejected += report.rejected;
     result.hypotheses += report.hypotheses;
     for (std::size_t t = 0; t < 4; ++t) result.nis[t].merge(report.nis[t]);
-    estimated_path.push_back(slam.filter().robotMean().head<3>());
+    estimated_path.push_back(slam.filter().robotMean().template head<3>());
     if (nees_every > 0 && k % nees_every == 0) {
       const PoseNees n = cameraPoseNees(slam.filter().robotMean(), slam.filter().robotCovariance(), frames[k].state);
       result.pose_nees.push_back(n.pose);
@@ -116,9 +116,9 @@ RunResult runForestSlam(const sylva::sim::ForestScenario& scenario,
 
   double sum_sq = 0.0, sum_true = 0.0;
   for (const auto& s : ekf.slots()) {
-    if (!ekf.holds<sylva::TreeXYZR>(s.id)) continue;
+    if (!ekf.template holds<sylva::TreeXYZR>(s.id)) continue;
     const double r_est =
-        ekf.landmarkMean<sylva::TreeXYZR>(s.id)[3] * (aligned ? final_alignment.scale : 1.0);
+        ekf.template landmarkMean<sylva::TreeXYZR>(s.id)[3] * (aligned ? final_alignment.scale : 1.0);
     const double r_true = scenario.tree(s.id).radius_m;
     sum_sq += (r_est - r_true) * (r_est - r_true);
     sum_true += r_true;
@@ -135,11 +135,22 @@ RunResult runForestSlam(const sylva::sim::ForestScenario& scenario,
     trace->final_landmarks.clear();
     for (const auto& [id, p] : euclideanLandmarks(ekf))
       trace->final_landmarks.emplace_back(p,
-                                          ekf.holds<sylva::TreeXYZR>(id)
-                                              ? ekf.landmarkMean<sylva::TreeXYZR>(id)[3]
+                                          ekf.template holds<sylva::TreeXYZR>(id)
+                                              ? ekf.template landmarkMean<sylva::TreeXYZR>(id)[3]
                                               : std::numeric_limits<double>::quiet_NaN());
   }
   return result;
+}
+
+}  // namespace
+
+RunResult runForestSlam(const sylva::sim::ForestScenario& scenario,
+                        const TreeSlamOptions& options,
+                        int max_frames,
+                        int nees_every,
+                        RunTrace* trace) {
+  if (options.camera_on_manifold) return runWith<ManifoldTreeSlam>(scenario, options, max_frames, nees_every, trace);
+  return runWith<MonocularTreeSlam>(scenario, options, max_frames, nees_every, trace);
 }
 
 }  // namespace forest_slam

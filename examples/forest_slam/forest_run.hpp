@@ -66,7 +66,17 @@ struct RunTrace {
 /// Trees still in inverse depth or IDR are left out: their depth is not yet observable (that
 /// is why they have not been converted), so the point at 1 / rho is not an estimate of where
 /// they are.
-std::vector<std::pair<Id, Vec<3>>> euclideanLandmarks(const MonocularTreeSlam::Filter& ekf);
+template <typename Filter>
+std::vector<std::pair<Id, Vec<3>>> euclideanLandmarks(const Filter& ekf) {
+  std::vector<std::pair<Id, Vec<3>>> out;
+  for (const auto& s : ekf.slots()) {
+    if (ekf.template holds<sylva::Point3>(s.id))
+      out.emplace_back(s.id, ekf.template landmarkMean<sylva::Point3>(s.id));
+    else if (ekf.template holds<sylva::TreeXYZR>(s.id))
+      out.emplace_back(s.id, ekf.template landmarkMean<sylva::TreeXYZR>(s.id).template head<3>());
+  }
+  return out;
+}
 
 /// Aligns estimated landmark positions to the true trees; returns the transform and e_l.
 std::pair<sylva::eval::Similarity3, double> alignMap(
@@ -78,7 +88,12 @@ std::pair<sylva::eval::Similarity3, double> alignMap(
 struct PoseNees {
   double pose, position, orientation;
 };
-PoseNees cameraPoseNees(const Vec<13>& estimate, const Mat<13, 13>& P, const Vec<13>& truth);
+/// P is the filter's camera covariance: of the 13 entries, or of the 12-dimensional tangent of
+/// a camera on its manifold (then the error is truth (-) estimate).
+template <int N>
+PoseNees cameraPoseNees(const Vec<13>& estimate, const Mat<N, N>& P, const Vec<13>& truth);
+extern template PoseNees cameraPoseNees<12>(const Vec<13>&, const Mat<12, 12>&, const Vec<13>&);
+extern template PoseNees cameraPoseNees<13>(const Vec<13>&, const Mat<13, 13>&, const Vec<13>&);
 
 /// One run of `options` over `scenario` (at most `max_frames` frames, 0: all).
 RunResult runForestSlam(const sylva::sim::ForestScenario& scenario,

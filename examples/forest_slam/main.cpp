@@ -203,6 +203,9 @@ int main(int argc, char** argv) {
                  "(docs/filter.md)")
       ->transform(CLI::CheckedTransformer(linearizations, CLI::ignore_case))
       ->default_str("textbook");
+  app.add_flag("--camera-on-manifold", slam_options.camera_on_manifold,
+               "keep the camera's state on its manifold (OnManifold<ConstantVelocity3D>): its covariance on the "
+               "12-dimensional tangent, each update composed through plus, instead of the quaternion's four entries");
   app.add_flag("--conversion-given-camera", slam_options.conversion_given_camera,
                "the life cycle judges each landmark's uncertainty given the camera's state (for a consistent "
                "filter, whose map keeps its position and scale uncertain)");

@@ -29,10 +29,11 @@ class PhaseClock {
 
 }  // namespace
 
-MonocularTreeSlam::MonocularTreeSlam(const TreeSlamOptions& options, const Vec<13>& x0, const Mat<13, 13>& P0)
+template <typename Camera>
+BasicMonocularTreeSlam<Camera>::BasicMonocularTreeSlam(const TreeSlamOptions& options, const Vec<13>& x0, const Mat<13, 13>& P0)
     : options_(options),
-      ekf_(sylva::ConstantVelocity3D{options.velocity_frame}.fromWorldVelocity(x0), P0,
-           sylva::ConstantVelocity3D{options.velocity_frame}),
+      ekf_(sylva::ConstantVelocity3D{options.velocity_frame}.fromWorldVelocity(x0), priorCovariance(x0, P0),
+           Camera(sylva::ConstantVelocity3D{options.velocity_frame})),
       id_point_(options.camera),
       xyz_point_(options.camera),
       tree_width_(options.camera),
@@ -54,7 +55,8 @@ MonocularTreeSlam::MonocularTreeSlam(const TreeSlamOptions& options, const Vec<1
     for (int dim = 1; dim <= 3; ++dim) gate_[dim] = sylva::chiSquareGate(dim, options.gate_probability);
 }
 
-FrameReport MonocularTreeSlam::processFrame(double dt,
+template <typename Camera>
+FrameReport BasicMonocularTreeSlam<Camera>::processFrame(double dt,
                                             const std::vector<sylva::sim::TreeObservation>& observations,
                                             const FrameTruth* truth) {
   const bool ideal = options_.linearization == sylva::LinearizationPoint::kIdeal;
@@ -131,13 +133,14 @@ FrameReport MonocularTreeSlam::processFrame(double dt,
   return report;
 }
 
-void MonocularTreeSlam::setIdealLandmarks(const FrameTruth& truth) {
+template <typename Camera>
+void BasicMonocularTreeSlam<Camera>::setIdealLandmarks(const FrameTruth& truth) {
   for (const auto& slot : ekf_.slots()) {
     const sylva::sim::Tree& tree = (*truth.trees)[static_cast<std::size_t>(slot.id)];
-    if (ekf_.holds<sylva::Point3>(slot.id)) {
-      ekf_.setIdealLandmark<sylva::Point3>(slot.id, tree.base);
-    } else if (ekf_.holds<sylva::TreeXYZR>(slot.id)) {
-      ekf_.setIdealLandmark<sylva::TreeXYZR>(slot.id, tree.xyzr());
+    if (ekf_.template holds<sylva::Point3>(slot.id)) {
+      ekf_.template setIdealLandmark<sylva::Point3>(slot.id, tree.base);
+    } else if (ekf_.template holds<sylva::TreeXYZR>(slot.id)) {
+      ekf_.template setIdealLandmark<sylva::TreeXYZR>(slot.id, tree.xyzr());
     } else {
       // Inverse depth (and IDR) of the base centre from the true camera position at the first
       // sight: the parametrization's true value.
@@ -146,21 +149,23 @@ void MonocularTreeSlam::setIdealLandmarks(const FrameTruth& truth) {
       const double rho = 1.0 / d.norm();
       Vec<7> l;
       l << anchor, std::atan2(d.y(), d.x()), std::atan2(d.z(), d.head<2>().norm()), rho, tree.radius_m * rho;
-      if (ekf_.holds<sylva::InverseDepth>(slot.id))
-        ekf_.setIdealLandmark<sylva::InverseDepth>(slot.id, l.head<6>());
+      if (ekf_.template holds<sylva::InverseDepth>(slot.id))
+        ekf_.template setIdealLandmark<sylva::InverseDepth>(slot.id, l.head<6>());
       else
-        ekf_.setIdealLandmark<sylva::InverseDepthRadius>(slot.id, l);
+        ekf_.template setIdealLandmark<sylva::InverseDepthRadius>(slot.id, l);
     }
   }
 }
 
-std::array<int, 4> MonocularTreeSlam::countByType() const {
+template <typename Camera>
+std::array<int, 4> BasicMonocularTreeSlam<Camera>::countByType() const {
   std::array<int, 4> n{0, 0, 0, 0};
   for (const auto& s : ekf_.slots()) ++n[static_cast<std::size_t>(s.type_index)];
   return n;
 }
 
-double MonocularTreeSlam::nisOf(const Filter& ekf, const Seen& s) const {
+template <typename Camera>
+double BasicMonocularTreeSlam<Camera>::nisOf(const Filter& ekf, const Seen& s) const {
   try {
     if (ekf.template holds<sylva::InverseDepth>(s.id))
       return ekf.innovation(id_point_, s.id, s.uv, pixel_noise_).nis();
@@ -174,15 +179,18 @@ double MonocularTreeSlam::nisOf(const Filter& ekf, const Seen& s) const {
   }
 }
 
-bool MonocularTreeSlam::passes(const Filter& ekf, const Seen& s) const { return withinGate(ekf, s.id, nisOf(ekf, s)); }
+template <typename Camera>
+bool BasicMonocularTreeSlam<Camera>::passes(const Filter& ekf, const Seen& s) const { return withinGate(ekf, s.id, nisOf(ekf, s)); }
 
-bool MonocularTreeSlam::withinGate(const Filter& ekf, Id id, double nis) const {
+template <typename Camera>
+bool BasicMonocularTreeSlam<Camera>::withinGate(const Filter& ekf, Id id, double nis) const {
   if (!(nis < kUnpredictable)) return false;
   const bool with_width = ekf.template holds<sylva::TreeXYZR>(id) || ekf.template holds<sylva::InverseDepthRadius>(id);
   return nis < gate_[with_width ? 3 : 2];
 }
 
-void MonocularTreeSlam::fuseOne(Filter& ekf, const Seen& s) const {
+template <typename Camera>
+void BasicMonocularTreeSlam<Camera>::fuseOne(Filter& ekf, const Seen& s) const {
   if (ekf.template holds<sylva::InverseDepth>(s.id))
     ekf.update(id_point_, s.id, s.uv, pixel_noise_);
   else if (ekf.template holds<sylva::Point3>(s.id))
@@ -193,7 +201,8 @@ void MonocularTreeSlam::fuseOne(Filter& ekf, const Seen& s) const {
     ekf.update(tree_width_, s.id, s.z, tree_noise_);
 }
 
-void MonocularTreeSlam::fuseMapped(FrameReport& report) {
+template <typename Camera>
+void BasicMonocularTreeSlam<Camera>::fuseMapped(FrameReport& report) {
   candidates_.clear();
   for (const Seen& s : mapped_) {
     const double nis = nisOf(ekf_, s);
@@ -255,7 +264,8 @@ void MonocularTreeSlam::fuseMapped(FrameReport& report) {
   fuseBatches(second_chance_, report);
 }
 
-void MonocularTreeSlam::fuseBatches(const std::vector<Seen>& observations, FrameReport& report) {
+template <typename Camera>
+void BasicMonocularTreeSlam<Camera>::fuseBatches(const std::vector<Seen>& observations, FrameReport& report) {
   id_batch_.clear();
   xyz_batch_.clear();
   tree_batch_.clear();
@@ -276,8 +286,9 @@ void MonocularTreeSlam::fuseBatches(const std::vector<Seen>& observations, Frame
   fuse(idr_width_, idr_batch_, report);
 }
 
+template <typename Camera>
 template <typename Model>
-void MonocularTreeSlam::fuse(const Model& model, const std::vector<sylva::Observation<Model>>& batch, FrameReport& report) {
+void BasicMonocularTreeSlam<Camera>::fuse(const Model& model, const std::vector<sylva::Observation<Model>>& batch, FrameReport& report) {
   if (batch.empty()) return;
   PhaseClock clock(profile_ == nullptr ? nullptr
                                        : Model::kDim == 3 ? &profile_->width_updates_s : &profile_->point_updates_s);
@@ -297,5 +308,8 @@ void MonocularTreeSlam::fuse(const Model& model, const std::vector<sylva::Observ
     }
   }
 }
+
+template class BasicMonocularTreeSlam<sylva::ConstantVelocity3D>;
+template class BasicMonocularTreeSlam<sylva::OnManifold<sylva::ConstantVelocity3D>>;
 
 }  // namespace forest_slam

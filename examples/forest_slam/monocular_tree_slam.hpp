@@ -66,6 +66,7 @@
 #include <sylva/measurements/pinhole_point.hpp>
 #include <sylva/measurements/tree_width.hpp>
 #include <sylva/motion/constant_velocity_3d.hpp>
+#include <sylva/motion/on_manifold.hpp>
 #include <sylva/noise/gaussian.hpp>
 #include <sylva/sim/tree_forest.hpp>
 #include <sylva/sim/tree_observer.hpp>
@@ -125,6 +126,10 @@ struct TreeSlamOptions {
   /// (sylva::landmarkCovarianceGivenRobot) instead of its marginal: a consistent filter keeps
   /// the map's position and scale uncertain, which the marginal includes.
   bool conversion_given_camera = false;
+  /// The camera's state on its manifold (sylva::OnManifold<ConstantVelocity3D>: covariance on
+  /// the 12-dimensional tangent, updates composed through plus) instead of its quaternion's
+  /// four entries. runForestSlam picks ManifoldTreeSlam for it.
+  bool camera_on_manifold = false;
   /// The left inverse of the observability-constrained update (sylva::GaugeInverse).
   sylva::GaugeInverse gauge_inverse = sylva::GaugeInverse::kRobot;
   /// Where the filter takes its Jacobians. kIdeal (a diagnostic) needs the truth of every frame
@@ -178,14 +183,22 @@ struct FrameProfile {
   }
 };
 
-class MonocularTreeSlam {
+/// `Camera` is the filter's robot: ConstantVelocity3D (its quaternion's 4 entries in the
+/// covariance, renormalized after each update) or OnManifold<ConstantVelocity3D> (the
+/// covariance on the 12-dimensional tangent, the update composed through plus). The two
+/// instantiations are compiled once, in monocular_tree_slam.cpp.
+template <typename Camera>
+class BasicMonocularTreeSlam {
  public:
-  using Filter = sylva::Ekf<sylva::ConstantVelocity3D, sylva::InverseDepth, sylva::Point3, sylva::TreeXYZR,
+  using Filter = sylva::Ekf<Camera, sylva::InverseDepth, sylva::Point3, sylva::TreeXYZR,
                             sylva::InverseDepthRadius>;
   using IdPoint = sylva::PinholePoint<sylva::InverseDepth>;
   using XyzPoint = sylva::PinholePoint<sylva::Point3>;
 
-  MonocularTreeSlam(const TreeSlamOptions& options, const Vec<13>& x0, const Mat<13, 13>& P0);
+  /// Starts at the camera state `x0` (velocity in the world frame, as the simulator gives it)
+  /// with covariance `P0` of its 13 entries (carried to the tangent for a camera on its
+  /// manifold).
+  BasicMonocularTreeSlam(const TreeSlamOptions& options, const Vec<13>& x0, const Mat<13, 13>& P0);
 
   const Filter& filter() const { return ekf_; }
   const TreeSlamOptions& options() const { return options_; }
@@ -215,6 +228,17 @@ class MonocularTreeSlam {
   };
 
   static constexpr double kUnpredictable = std::numeric_limits<double>::infinity();
+
+  /// P0 of the camera's 13 entries as the filter's: carried to the tangent at x0 on a manifold.
+  static typename Filter::RobotCovariance priorCovariance(const Vec<13>& x0, const Mat<13, 13>& P0) {
+    if constexpr (Filter::kRobotOnManifold) {
+      const Mat<12, 13> M = Camera::minusJacobian(x0);
+      return M * P0 * M.transpose();
+    } else {
+      (void)x0;
+      return P0;
+    }
+  }
   static constexpr int kMaxHypotheses = 5;
 
   /// NIS of observation `s` against `ekf`'s current estimate through the model of the
@@ -263,5 +287,12 @@ class MonocularTreeSlam {
   std::vector<Candidate> candidates_;
   FrameProfile* profile_ = nullptr;
 };
+
+/// The pipeline with the camera's quaternion in the state (the thesis's filter).
+using MonocularTreeSlam = BasicMonocularTreeSlam<sylva::ConstantVelocity3D>;
+/// The pipeline with the camera on its manifold (TreeSlamOptions::camera_on_manifold).
+using ManifoldTreeSlam = BasicMonocularTreeSlam<sylva::OnManifold<sylva::ConstantVelocity3D>>;
+extern template class BasicMonocularTreeSlam<sylva::ConstantVelocity3D>;
+extern template class BasicMonocularTreeSlam<sylva::OnManifold<sylva::ConstantVelocity3D>>;
 
 }  // namespace forest_slam

@@ -4,6 +4,7 @@
 #include "sylva/motion/ackermann_2d_with_bias.hpp"
 #include "sylva/motion/constant_velocity_3d.hpp"
 #include "sylva/motion/odometry_2d.hpp"
+#include "sylva/motion/on_manifold.hpp"
 #include "sylva/motion/pose_2d.hpp"
 #include "sylva/motion/unicycle_2d.hpp"
 // IWYU pragma: end_exports

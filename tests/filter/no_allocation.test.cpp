@@ -84,15 +84,16 @@ TEMPLATE_TEST_CASE("predict and a single update do not allocate in steady state"
   CHECK(g_eigen_assert_failures.load() == 0);
 }
 
-TEST_CASE("the monocular tree filter's predict and updates do not allocate in steady state", "[filter][allocation]") {
-  using Filter = Ekf<ConstantVelocity3D, InverseDepth, Point3, TreeXYZR>;
+TEMPLATE_TEST_CASE("the monocular tree filter's predict and updates do not allocate in steady state", "[filter][allocation]",
+                   ConstantVelocity3D, OnManifold<ConstantVelocity3D>) {
+  using Filter = Ekf<TestType, InverseDepth, Point3, TreeXYZR>;
   const PinholeCamera camera{500.0, 500.0, 320.0, 240.0, 640, 480};
   // Camera 1.5 m above the ground looking along world +x: camera x = -y_W, y = -z_W, z = x_W.
   Vec<13> x0 = Vec<13>::Zero();
   x0.head<3>() = Vec<3>(0.0, 0.0, 1.5);
   x0.segment<4>(3) = Vec<4>(0.5, -0.5, 0.5, -0.5);
   x0.segment<3>(7) = Vec<3>(1.0, 0.0, 0.0);
-  Mat<13, 13> P0 = Mat<13, 13>::Identity() * 1e-4;
+  const Mat<Filter::kRobotDim, Filter::kRobotDim> P0 = Mat<Filter::kRobotDim, Filter::kRobotDim>::Identity() * 1e-4;
   Filter ekf(x0, P0);
   const PinholePoint<InverseDepth> id_model(camera);
   const PinholePoint<Point3> xyz_model(camera);
@@ -112,18 +113,18 @@ TEST_CASE("the monocular tree filter's predict and updates do not allocate in st
   const auto q = Gaussian<6>::sigmas(Vec<6>::Constant(0.5));
   // Warm-up: sizes the workspaces.
   ekf.predict(Vec<0>(), 0.05, q);
-  ekf.update(xyz_model, 10, xyz_model(ekf.robotMean(), ekf.landmarkMean<Point3>(10)), pixel);
-  ekf.update(width_model, 20, width_model(ekf.robotMean(), ekf.landmarkMean<TreeXYZR>(20)), pixel_width);
+  ekf.update(xyz_model, 10, xyz_model(ekf.robotMean(), ekf.template landmarkMean<Point3>(10)), pixel);
+  ekf.update(width_model, 20, width_model(ekf.robotMean(), ekf.template landmarkMean<TreeXYZR>(20)), pixel_width);
 
   const auto allocationsOfSteps = [&] {
     const long before = g_allocations.load();
     Eigen::internal::set_is_malloc_allowed(false);
     for (int step = 0; step < 10; ++step) {
       ekf.predict(Vec<0>(), 0.05, q);
-      ekf.update(id_model, 3, id_model(ekf.robotMean(), ekf.landmarkMean<InverseDepth>(3)) + Vec<2>(0.3, -0.2), pixel);
-      ekf.update(xyz_model, 15, xyz_model(ekf.robotMean(), ekf.landmarkMean<Point3>(15)) + Vec<2>(-0.3, 0.2), pixel);
+      ekf.update(id_model, 3, id_model(ekf.robotMean(), ekf.template landmarkMean<InverseDepth>(3)) + Vec<2>(0.3, -0.2), pixel);
+      ekf.update(xyz_model, 15, xyz_model(ekf.robotMean(), ekf.template landmarkMean<Point3>(15)) + Vec<2>(-0.3, 0.2), pixel);
       ekf.update(width_model, 25,
-                 width_model(ekf.robotMean(), ekf.landmarkMean<TreeXYZR>(25)) + Vec<3>(0.2, 0.1, -0.2), pixel_width);
+                 width_model(ekf.robotMean(), ekf.template landmarkMean<TreeXYZR>(25)) + Vec<3>(0.2, 0.1, -0.2), pixel_width);
     }
     Eigen::internal::set_is_malloc_allowed(true);
     return g_allocations.load() - before;
@@ -131,10 +132,10 @@ TEST_CASE("the monocular tree filter's predict and updates do not allocate in st
   CHECK(allocationsOfSteps() == 0);
   // The observability-constrained transport has a workspace of its own: one warm-up.
   ekf.setLinearizationPoint(LinearizationPoint::kObservabilityConstrained);
-  ekf.update(xyz_model, 10, xyz_model(ekf.robotMean(), ekf.landmarkMean<Point3>(10)), pixel);
+  ekf.update(xyz_model, 10, xyz_model(ekf.robotMean(), ekf.template landmarkMean<Point3>(10)), pixel);
   CHECK(allocationsOfSteps() == 0);
   CHECK(g_eigen_assert_failures.load() == 0);
-  CHECK(ekf.holds<TreeXYZR>(25));
+  CHECK(ekf.template holds<TreeXYZR>(25));
 }
 
 // A map big enough that one untiled rank-24 update would make Eigen pack its panels on the

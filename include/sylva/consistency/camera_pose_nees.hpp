@@ -16,6 +16,11 @@
 /// so G is exact. NEES = e^T (G P G^T)^-1 e ~ chi-square(6) for a consistent filter.
 /// Throws like `nees` (kNotPositiveDefinite when G P G^T is not positive definite,
 /// kNonFinite for NaN or Inf).
+///
+/// A camera on its manifold (OnManifold<ConstantVelocity3D>, covariance 12x12 on the tangent
+/// [dr, dtheta, dv, domega]) has an error vector already: e = truth (-) estimate, whose pose
+/// part is [t_true - t_hat, Log(q_hat^* (x) q_true)], with covariance the tangent's top-left
+/// 6x6 block; `cameraPoseErrorOnManifold` and `cameraPoseNeesOnManifold` compute that.
 
 #include "sylva/consistency/nees.hpp"
 #include "sylva/core/error.hpp"
@@ -54,6 +59,29 @@ inline CameraPoseError cameraPoseError(const Vec<13>& estimate, const Mat<13, 13
         2.0 * quaternionProduct<double>(conj(Vec<4>::Unit(i)), q_true).tail<3>();
   out.S = G * covariance.topLeftCorner<7, 7>() * G.transpose();
   return out;
+}
+
+/// The camera pose's error on the manifold: e = (truth (-) estimate)'s pose part, and the
+/// tangent covariance's pose block (see the top of this file).
+inline CameraPoseError cameraPoseErrorOnManifold(const Vec<13>& estimate, const Mat<12, 12>& covariance,
+                                                 const Vec<13>& truth) {
+  if (!estimate.allFinite() || !truth.allFinite())
+    fail(ErrorCode::kNonFinite, "cameraPoseNees: the estimate or the true state is not finite");
+  const Vec<4> q = estimate.segment<4>(3);
+  const double true_norm = truth.segment<4>(3).norm();
+  if (!(q.norm() > 1e-12) || !(true_norm > 1e-12))
+    fail(ErrorCode::kDegenerateGeometry, "cameraPoseNees: an orientation quaternion has (near) zero norm");
+  CameraPoseError out;
+  out.e.head<3>() = truth.head<3>() - estimate.head<3>();
+  out.e.tail<3>() = rotationVectorFromQuaternion(quaternionProduct<double>(
+      Vec<4>(q[0], -q[1], -q[2], -q[3]) / q.norm(), Vec<4>(truth.segment<4>(3) / true_norm)));
+  out.S = covariance.topLeftCorner<6, 6>();
+  return out;
+}
+
+inline double cameraPoseNeesOnManifold(const Vec<13>& estimate, const Mat<12, 12>& covariance, const Vec<13>& truth) {
+  const CameraPoseError pose = cameraPoseErrorOnManifold(estimate, covariance, truth);
+  return nees(pose.e, pose.S);
 }
 
 inline double cameraPoseNees(const Vec<13>& estimate,

@@ -42,6 +42,16 @@ Vec<4, T> quaternionFromRotationVector(const Vec<3, T>& theta) {
   return q;
 }
 
+/// The rotation vector of a unit quaternion (Log, the inverse of
+/// quaternionFromRotationVector), the short way round: the angle is at most pi.
+inline Vec<3> rotationVectorFromQuaternion(const Vec<4>& q_in) {
+  const Vec<4> q = q_in[0] < 0.0 ? Vec<4>(-q_in) : q_in;
+  const Vec<3> v = q.tail<3>();
+  const double s = v.norm();
+  if (s < 1e-8) return (2.0 / q[0]) * v * (1.0 - s * s / (3.0 * q[0] * q[0]));  // atan series
+  return (2.0 * std::atan2(s, q[0]) / s) * v;
+}
+
 /// Rotation matrix of a unit quaternion (w, x, y, z).
 template <typename T>
 Mat<3, 3, T> rotationMatrix(const Vec<4, T>& q) {

@@ -247,4 +247,56 @@ void normalize(Block&& block) {
   if constexpr (HasNormalize<Param>::value) Param::normalize(block);
 }
 
+/// A robot whose state lives on a manifold declares `kTangentDim` (< kDim) and `plus`,
+/// `minus`, `plusJacobian`, `minusJacobian` (motion/on_manifold.hpp): the filter keeps its
+/// covariance on the tangent and chains every model's Jacobian through them.
+template <typename Robot, typename = void>
+struct HasTangent : std::false_type {};
+template <typename Robot>
+struct HasTangent<Robot, std::void_t<decltype(Robot::kTangentDim)>> : std::true_type {};
+
+/// The robot's rows in the covariance: its tangent dimension, or kDim for a vector state.
+template <typename Robot>
+constexpr int tangentDim() {
+  if constexpr (HasTangent<Robot>::value) {
+    return Robot::kTangentDim;
+  } else {
+    return Robot::kDim;
+  }
+}
+
+/// y (-) x for the robot: `minus` on a manifold, the wrapped difference of a vector state.
+template <typename Robot>
+Vec<tangentDim<Robot>()> robotMinus(const Vec<Robot::kDim>& y, const Vec<Robot::kDim>& x) {
+  if constexpr (HasTangent<Robot>::value) {
+    return Robot::minus(y, x);
+  } else {
+    return difference<Robot>(y, x);
+  }
+}
+
+/// x (+) d for the robot: `plus` on a manifold, x + d (normalized) for a vector state.
+template <typename Robot>
+Vec<Robot::kDim> robotPlus(const Vec<Robot::kDim>& x, const Vec<tangentDim<Robot>()>& d) {
+  if constexpr (HasTangent<Robot>::value) {
+    return Robot::plus(x, d);
+  } else {
+    Vec<Robot::kDim> out = x + d;
+    normalize<Robot>(out);
+    return out;
+  }
+}
+
+/// J (rows x kDim, w.r.t. the robot's state entries at x) as a Jacobian w.r.t. its tangent:
+/// J plusJacobian(x) on a manifold, J itself for a vector state.
+template <typename Robot, int Rows>
+Mat<Rows, tangentDim<Robot>()> onTangent(const Mat<Rows, Robot::kDim>& J, const Vec<Robot::kDim>& x) {
+  if constexpr (HasTangent<Robot>::value) {
+    return J * Robot::plusJacobian(x);
+  } else {
+    (void)x;
+    return J;
+  }
+}
+
 }  // namespace sylva::detail

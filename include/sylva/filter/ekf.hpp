@@ -8,6 +8,12 @@
 /// list), so a map can hold e.g. inverse-depth points, XYZ points and trees side by side.
 /// Every kernel works on fixed-size blocks whose sizes come from the types.
 ///
+/// A robot whose state lives on a manifold (`kTangentDim`, `plus`, `minus`: OnManifold<Robot>
+/// for a robot with a unit quaternion) keeps its mean on the manifold and its covariance on
+/// the tangent there: the robot's rows in the covariance are kRobotDim = kTangentDim, every
+/// model's Jacobian is chained through plusJacobian and minusJacobian, and updates move the
+/// robot through plus. See docs/filter.md ("Robots on manifolds").
+///
 /// Complexity (n = state dimension, m = measurement dimension):
 ///   predict            O(n)      robot block and its cross-covariances (eq. 2.27)
 ///   update             O(n^2 m)  H is non-zero only in the robot block and one landmark block
@@ -226,10 +232,17 @@ class BasicEkf {
  public:
   using UpdateForm = UpdateForm_;
   using Robot = Robot_;
-  static constexpr int kRobotDim = Robot::kDim;
+  /// True for a robot whose state lives on a manifold (motion/on_manifold.hpp): its mean
+  /// holds kRobotStateDim entries, its covariance the kRobotDim of the tangent.
+  static constexpr bool kRobotOnManifold = detail::HasTangent<Robot>::value;
+  /// Entries of the robot's mean (`Robot::kDim`).
+  static constexpr int kRobotStateDim = Robot::kDim;
+  /// The robot's rows in the covariance and in every Jacobian the filter hands out: its
+  /// tangent dimension on a manifold, `Robot::kDim` otherwise.
+  static constexpr int kRobotDim = detail::tangentDim<Robot>();
   static constexpr int kControlDim = Robot::kControlDim;
   static constexpr int kNoiseDim = Robot::kNoiseDim;
-  using RobotState = Vec<kRobotDim>;
+  using RobotState = Vec<kRobotStateDim>;
   using RobotCovariance = Mat<kRobotDim, kRobotDim>;
   using Control = Vec<kControlDim>;
 
@@ -267,14 +280,18 @@ class BasicEkf {
   }
 
   /// Starts the filter with the robot's prior. `P0` must be symmetric positive
-  /// semi-definite (a zero matrix is fine: "the robot starts at the origin of the map").
+  /// semi-definite (a zero matrix is fine: "the robot starts at the origin of the map"); for
+  /// a robot on a manifold it is the covariance of the tangent at x0 (kRobotDim), and x0 must
+  /// lie on the manifold (kOutOfDomain otherwise: a quaternion off unit norm is refused).
   BasicEkf(const RobotState& x0, const RobotCovariance& P0, Robot robot = Robot())
       : robot_(robot) {
     if (!x0.allFinite()) fail(ErrorCode::kNonFinite, "Ekf: initial robot state is not finite");
+    checkRobotDomain(x0, "Ekf: initial robot state");
     checkCovariance(P0, "Ekf: initial robot covariance");
     reserve(0);
-    mean_.template head<kRobotDim>() = x0;
-    first_.template head<kRobotDim>() = x0;
+    robot_mean_ = x0;
+    robot_first_ = x0;
+    robot_ideal_.setConstant(std::numeric_limits<double>::quiet_NaN());
     cov_.template topLeftCorner<kRobotDim, kRobotDim>() = 0.5 * (P0 + P0.transpose());
     n_ = kRobotDim;
   }
@@ -338,7 +355,8 @@ class BasicEkf {
   /// the updates see). Non-finite input is refused (kNonFinite); the filter is unchanged.
   void setIdealRobot(const RobotState& x_true) {
     if (!x_true.allFinite()) fail(ErrorCode::kNonFinite, "Ekf::setIdealRobot: the true robot state is not finite");
-    ideal_.template head<kRobotDim>() = x_true;
+    checkRobotDomain(x_true, "Ekf::setIdealRobot: the true robot state");
+    robot_ideal_ = x_true;
   }
 
   /// The true state of landmark `id` in its parametrization `Landmark`, for kIdeal. Kept until
@@ -372,7 +390,9 @@ class BasicEkf {
     return it != index_.end() && slots_[it->second].type_index == typeIndexOf<Landmark>();
   }
 
-  RobotState robotMean() const { return mean_.template head<kRobotDim>(); }
+  /// The robot's mean (kRobotStateDim entries; on a manifold, a point of it).
+  const RobotState& robotMean() const { return robot_mean_; }
+  /// The robot's covariance (kRobotDim: on a manifold, of the tangent at robotMean()).
   RobotCovariance robotCovariance() const { return symmetricBlock<kRobotDim, kRobotDim>(0, 0); }
 
   /// Mean of landmark `id`, which must be parametrized as `Landmark` (else kWrongLandmarkType).
@@ -396,8 +416,14 @@ class BasicEkf {
     return symmetricBlock<kRobotDim, Landmark::kDim>(0, s.offset);
   }
 
-  /// Copy of the whole mean (n).
-  Eigen::VectorXd mean() const { return mean_.head(n_); }
+  /// Copy of the whole mean: the robot's state, then the landmark blocks. Its length is n
+  /// (`dim()`) but for a robot on a manifold, whose state is kRobotStateDim - kRobotDim
+  /// entries longer than its rows in the covariance.
+  Eigen::VectorXd mean() const {
+    Eigen::VectorXd out(n_ - kRobotDim + kRobotStateDim);
+    out << robot_mean_, mean_.segment(kRobotDim, n_ - kRobotDim);
+    return out;
+  }
 
   /// The covariance as a symmetric view of the stored lower triangle, without a copy: use it
   /// in products (`ekf.covarianceView() * v`) or assign it to a dense matrix. Its entries
@@ -424,28 +450,47 @@ class BasicEkf {
       fail(ErrorCode::kNegativeTimeStep, os.str());
     }
     if (!u.allFinite()) fail(ErrorCode::kNonFinite, "Ekf::predict: control is not finite");
-    Mat<kRobotDim, kRobotDim> F;
-    Mat<kRobotDim, kNoiseDim> G;
-    RobotState next = robot_(robotMean(), u, dt, F, G);
-    if (linearization_ == LinearizationPoint::kIdeal) {
-      // The motion linearized about the true state: f(x_true) + F (x - x_true).
-      const RobotState truth = idealRobot("Ekf::predict");
-      next = robot_(truth, u, dt, F, G) + F * detail::difference<Robot>(robotMean(), truth);
-      detail::normalize<Robot>(next);
+    Mat<kRobotStateDim, kRobotStateDim> F_state;
+    Mat<kRobotStateDim, kNoiseDim> G_state;
+    // The Jacobians are taken from `from` to `to` (on a manifold, chained through the
+    // tangents there).
+    RobotState from = robotMean();
+    RobotState next = robot_(from, u, dt, F_state, G_state);
+    RobotState to = next;
+    const bool ideal = linearization_ == LinearizationPoint::kIdeal;
+    if (ideal) {
+      from = idealRobot("Ekf::predict");
+      to = robot_(from, u, dt, F_state, G_state);
     }
     if constexpr (detail::HasFirstEstimatesJacobian<Robot>::value) {
       // FEJ: the transition Jacobian between the previous prediction and this one.
-      if (linearization_ == LinearizationPoint::kFirstEstimates && next.allFinite())
-        F = detail::firstEstimatesJacobian(robot_, RobotState(first_.template head<kRobotDim>()), next, dt);
+      if (linearization_ == LinearizationPoint::kFirstEstimates && next.allFinite()) {
+        from = robot_first_;
+        F_state = detail::firstEstimatesJacobian(robot_, from, next, dt);
+      }
     }
-    if (!next.allFinite() || !F.allFinite() || !G.allFinite())
+    if (!next.allFinite() || !to.allFinite() || !F_state.allFinite() || !G_state.allFinite())
       fail(ErrorCode::kNonFinite, "Ekf::predict: motion model produced a non-finite state or Jacobian");
+    checkRobotDomain(to, "Ekf::predict: the motion model's state");
+    Mat<kRobotDim, kRobotDim> F;
+    Mat<kRobotDim, kNoiseDim> G;
+    if constexpr (kRobotOnManifold) {
+      const Mat<kRobotDim, kRobotStateDim> M_to = Robot::minusJacobian(to);
+      F = M_to * F_state * Robot::plusJacobian(from);
+      G = M_to * G_state;
+    } else {
+      F = F_state;
+      G = G_state;
+    }
+    // The motion linearized about the true state: f(x_true) (+) F (x (-) x_true).
+    if (ideal) next = detail::robotPlus<Robot>(to, F * detail::robotMinus<Robot>(robotMean(), from));
+    if (!next.allFinite()) fail(ErrorCode::kNonFinite, "Ekf::predict: motion model produced a non-finite state");
 
     const RobotCovariance GQGt = G * noise.covariance() * G.transpose();
     // From here on nothing can fail.
-    mean_.template head<kRobotDim>() = next;
-    first_.template head<kRobotDim>() = next;
-    ideal_.template head<kRobotDim>().setConstant(std::numeric_limits<double>::quiet_NaN());
+    robot_mean_ = next;
+    robot_first_ = next;
+    robot_ideal_.setConstant(std::numeric_limits<double>::quiet_NaN());
     transformRobotBlock(F, GQGt);  // eq. 2.27
   }
 
@@ -604,8 +649,7 @@ class BasicEkf {
     const Vec<L> landmark = mean_.template segment<L>(s.offset);
     if (linearization_ == LinearizationPoint::kFirstEstimates) {
       lin.z_hat = detail::evaluateOn<Robot>(model, robotMean(), landmark, {}, {});
-      detail::evaluateOn<Robot>(model, RobotState(first_.template head<kRobotDim>()),
-                       Vec<L>(first_.template segment<L>(s.offset)), lin.J_z_x, lin.J_z_l);
+      evaluateWithJacobians(model, robot_first_, Vec<L>(first_.template segment<L>(s.offset)), lin);
     } else if (linearization_ == LinearizationPoint::kIdeal) {
       const Vec<L> ideal_landmark = ideal_.template segment<L>(s.offset);
       if (!ideal_landmark.allFinite())
@@ -614,11 +658,11 @@ class BasicEkf {
                  std::to_string(id) + " (setIdealLandmark), and none was handed over since it entered the state");
       const RobotState ideal_robot = idealRobot(Model::kName);
       // The first-order prediction about the truth: the filter of the linearized system.
-      lin.z_hat = detail::evaluateOn<Robot>(model, ideal_robot, ideal_landmark, lin.J_z_x, lin.J_z_l) +
-                  lin.J_z_x * detail::difference<Robot>(robotMean(), ideal_robot) +
+      lin.z_hat = evaluateWithJacobians(model, ideal_robot, ideal_landmark, lin) +
+                  lin.J_z_x * detail::robotMinus<Robot>(robotMean(), ideal_robot) +
                   lin.J_z_l * detail::difference<typename Model::Landmark>(landmark, ideal_landmark);
     } else {
-      lin.z_hat = detail::evaluateOn<Robot>(model, robotMean(), landmark, lin.J_z_x, lin.J_z_l);
+      lin.z_hat = evaluateWithJacobians(model, robotMean(), landmark, lin);
     }
     if (!lin.z_hat.allFinite() || !lin.J_z_x.allFinite() || !lin.J_z_l.allFinite())
       fail(ErrorCode::kNonFinite, nameOf<Model>() + ": prediction or Jacobian is not finite for landmark " +
@@ -677,9 +721,10 @@ class BasicEkf {
       fail(ErrorCode::kDuplicateId, std::string(InverseModel::kName) + ": landmark id " +
                                         std::to_string(id) + " already exists");
     if (!z.allFinite()) fail(ErrorCode::kNonFinite, std::string(InverseModel::kName) + ": measurement is not finite");
-    Mat<L, kRobotDim> J_l_x;
+    Mat<L, kRobotStateDim> J_l_state;
     Mat<L, Z> J_l_z;
-    const Vec<L> l = detail::initializeOn<Robot>(inverse, robotMean(), z, J_l_x, J_l_z);
+    const Vec<L> l = detail::initializeOn<Robot>(inverse, robotMean(), z, J_l_state, J_l_z);
+    const Mat<L, kRobotDim> J_l_x = detail::onTangent<Robot>(J_l_state, robotMean());
     if (!l.allFinite() || !J_l_x.allFinite() || !J_l_z.allFinite())
       fail(ErrorCode::kNonFinite, std::string(InverseModel::kName) + ": initialization is not finite");
     if constexpr (detail::HasDomain<Landmark>::value) {
@@ -736,11 +781,12 @@ class BasicEkf {
     static_assert(kHolds<From> && kHolds<To>,
                   "both parametrizations of the conversion must be in the filter's Landmarks... list");
     const LandmarkSlot s = typedSlot<From>(id, Conversion::kName);
-    Mat<To::kDim, kRobotDim> J_x;
+    Mat<To::kDim, kRobotStateDim> J_x;
     Mat<To::kDim, From::kDim> J_l;
     const Vec<To::kDim> new_mean =
         conversion(robotMean(), Vec<From::kDim>(mean_.template segment<From::kDim>(s.offset)), J_x, J_l);
-    replaceBlock<From, To>(s, new_mean, J_x, J_l, Mat<To::kDim, To::kDim>::Zero(), Conversion::kName);
+    replaceBlock<From, To>(s, new_mean, detail::onTangent<Robot>(J_x, robotMean()), J_l, Mat<To::kDim, To::kDim>::Zero(),
+                           Conversion::kName);
   }
 
   /// A conversion that also takes a fresh measurement `z` with noise `noise` (XYZ -> XYZ-R:
@@ -759,7 +805,7 @@ class BasicEkf {
                   "both parametrizations of the conversion must be in the filter's Landmarks... list");
     const LandmarkSlot s = typedSlot<From>(id, Conversion::kName);
     if (!z.allFinite()) fail(ErrorCode::kNonFinite, std::string(Conversion::kName) + ": measurement is not finite");
-    Mat<To::kDim, kRobotDim> J_x;
+    Mat<To::kDim, kRobotStateDim> J_x;
     Mat<To::kDim, From::kDim> J_l;
     Mat<To::kDim, Z> J_z;
     const Vec<To::kDim> new_mean = conversion(
@@ -767,7 +813,7 @@ class BasicEkf {
     if (!J_z.allFinite())
       fail(ErrorCode::kNonFinite, std::string(Conversion::kName) + ": conversion is not finite");
     const Mat<To::kDim, To::kDim> added = J_z * noise.covariance() * J_z.transpose();
-    replaceBlock<From, To>(s, new_mean, J_x, J_l, added, Conversion::kName);
+    replaceBlock<From, To>(s, new_mean, detail::onTangent<Robot>(J_x, robotMean()), J_l, added, Conversion::kName);
   }
 
  private:
@@ -804,10 +850,10 @@ class BasicEkf {
       // The next iterate on the blocks the observations see: prior + K_i nu_i.
       v = nu;
       llt.solveInPlace(v);
-      RobotState robot_next = robot_prior + PHt.template topRows<kRobotDim>() * v;
-      detail::normalize<Robot>(robot_next);
+      const RobotState robot_next =
+          detail::robotPlus<Robot>(robot_prior, Vec<kRobotDim>(PHt.template topRows<kRobotDim>() * v));
       double step = 0.0;
-      const RobotState robot_step = detail::difference<Robot>(robot_next, robot_iterate);
+      const Vec<kRobotDim> robot_step = detail::robotMinus<Robot>(robot_next, robot_iterate);
       for (int j = 0; j < kRobotDim; ++j) step = std::max(step, std::abs(robot_step[j]) / sigma(j));
       for (int a = 0; a < k; ++a) {
         const int off = lins.offset(a);
@@ -825,8 +871,14 @@ class BasicEkf {
         const Linearization<Model, kRobotDim> lin = linearizeAt(model, obs.id, robot_iterate, landmark);
         lins.store(i, lin);
         const Vec<L> prior = mean_.template segment<L>(lin.landmark_offset);
-        nu.template segment<M>(i * M) = detail::residual(model, obs.z, lin.z_hat) +
-                                        lin.J_z_x * detail::difference<Robot>(robot_iterate, robot_prior) +
+        // (On a manifold J_z_x is taken at the iterate, so the prior is read in its tangent.)
+        Vec<kRobotDim> robot_offset;
+        if constexpr (kRobotOnManifold) {
+          robot_offset = -Robot::minus(robot_prior, robot_iterate);
+        } else {
+          robot_offset = detail::difference<Robot>(robot_iterate, robot_prior);
+        }
+        nu.template segment<M>(i * M) = detail::residual(model, obs.z, lin.z_hat) + lin.J_z_x * robot_offset +
                                         lin.J_z_l * detail::difference<Landmark>(landmark, prior);
         ++i;
       }
@@ -842,11 +894,37 @@ class BasicEkf {
                                    const Vec<Model::Landmark::kDim>& landmark) const {
     Linearization<Model, kRobotDim> lin;
     lin.landmark_offset = typedSlot<typename Model::Landmark>(id, Model::kName).offset;
-    lin.z_hat = detail::evaluateOn<Robot>(model, robot, landmark, lin.J_z_x, lin.J_z_l);
+    lin.z_hat = evaluateWithJacobians(model, robot, landmark, lin);
     if (!lin.z_hat.allFinite() || !lin.J_z_x.allFinite() || !lin.J_z_l.allFinite())
       fail(ErrorCode::kNonFinite, nameOf<Model>() + ": prediction or Jacobian is not finite for landmark " +
                                       std::to_string(id) + " at an iterate");
     return lin;
+  }
+
+  /// h at (robot, landmark), with lin.J_z_x (w.r.t. the robot's rows of the state: on a
+  /// manifold, its tangent at `robot`) and lin.J_z_l.
+  template <typename Model, typename Lin>
+  Vec<Model::kDim> evaluateWithJacobians(const Model& model, const RobotState& robot,
+                                         const Vec<Model::Landmark::kDim>& landmark, Lin& lin) const {
+    if constexpr (kRobotOnManifold) {
+      Mat<Model::kDim, kRobotStateDim> J_state;
+      const Vec<Model::kDim> z = detail::evaluateOn<Robot>(model, robot, landmark, J_state, lin.J_z_l);
+      lin.J_z_x = J_state * Robot::plusJacobian(robot);
+      return z;
+    } else {
+      return detail::evaluateOn<Robot>(model, robot, landmark, lin.J_z_x, lin.J_z_l);
+    }
+  }
+
+  /// Throws kOutOfDomain when a robot state is off the robot's manifold (a robot type that
+  /// declares `domainViolation`, OnManifold's unit quaternion).
+  static void checkRobotDomain(const RobotState& x, const char* what) {
+    if constexpr (detail::HasDomain<Robot>::value) {
+      if (const char* why = Robot::domainViolation(x)) fail(ErrorCode::kOutOfDomain, std::string(what) + ": " + why);
+    } else {
+      (void)x;
+      (void)what;
+    }
   }
 
   /// `update(model, observations, Fusion::kSequential)`: checks ids, types and measurements
@@ -919,8 +997,8 @@ class BasicEkf {
   }
 
   /// The true robot state handed over for kIdeal (kInvalidArgument naming `who` if none is).
-  RobotState idealRobot(const char* who) const {
-    const RobotState x = ideal_.template head<kRobotDim>();
+  const RobotState& idealRobot(const char* who) const {
+    const RobotState& x = robot_ideal_;
     if (!x.allFinite())
       fail(ErrorCode::kInvalidArgument,
            std::string(who) + ": ideal linearization needs the robot's true state (setIdealRobot), and none was "
@@ -1102,7 +1180,7 @@ class BasicEkf {
       toInvariantIncrement(delta);
       prepareGaugeTransport(delta);
       checkPosteriorDomain(delta);  // may throw; nothing of the filter is written yet
-      mean_.head(n_) += delta;
+      applyMeanIncrement(delta);
       // A = (I - K H) P = P - K (P H^T)^T on the full matrix.
       P.template triangularView<Eigen::StrictlyUpper>() = P.transpose();
       P.noalias() -= K * PHt.transpose();
@@ -1139,7 +1217,7 @@ class BasicEkf {
         toInvariantIncrement(delta);
         prepareGaugeTransport(delta);
         checkPosteriorDomain(delta);  // may throw; nothing of the filter is written yet
-        mean_.head(n_) += delta;
+        applyMeanIncrement(delta);
         detail::subtractLowerRankUpdate(P, W);  // a tiled symmetric rank-km update
       } else {
         llt.matrixU().template solveInPlace<Eigen::OnTheRight>(PHt);
@@ -1148,7 +1226,7 @@ class BasicEkf {
         toInvariantIncrement(delta);
         prepareGaugeTransport(delta);
         checkPosteriorDomain(delta);  // may throw; nothing of the filter is written yet
-        mean_.head(n_) += delta;
+        applyMeanIncrement(delta);
         // One column at a time: a fixed-size GEMV per column, one pass over half of P.
         for (int j = 0; j < n_; ++j) {
           const Eigen::Matrix<double, M, 1> w_j = PHt.row(j).transpose();
@@ -1185,8 +1263,7 @@ class BasicEkf {
       const bool small = std::abs(phi) < 1e-6;
       const double a = small ? 1.0 - phi * phi / 6.0 : sin_phi / phi;
       const double b = small ? 0.5 * phi : (1.0 - cos_phi) / phi;
-      const auto retract = [&](int o) {
-        const Vec<2> p = mean_.template segment<2>(o);
+      const auto retract = [&](int o, const Vec<2>& p) {
         const Vec<2> xi(delta[o] + phi * p.y(), delta[o + 1] - phi * p.x());  // delta_p - phi J p
         const Vec<2> moved(cos_phi * p.x() - sin_phi * p.y() + a * xi.x() - b * xi.y(),
                            sin_phi * p.x() + cos_phi * p.y() + b * xi.x() + a * xi.y());
@@ -1194,9 +1271,12 @@ class BasicEkf {
         delta.template segment<2>(o) = step;
         c.template segment<2>(o) = Vec<2>(-step.y(), step.x());
       };
-      retract(Robot::kPlanarPosition);
+      retract(Robot::kPlanarPosition, robot_mean_.template segment<2>(Robot::kPlanarPosition));
       constexpr int kPositions[] = {Landmarks_::kPlanarPosition...};
-      for (const LandmarkSlot& s : slots_) retract(s.offset + kPositions[s.type_index]);
+      for (const LandmarkSlot& s : slots_) {
+        const int o = s.offset + kPositions[s.type_index];
+        retract(o, mean_.template segment<2>(o));
+      }
     } else {
       (void)delta;
     }
@@ -1230,8 +1310,13 @@ class BasicEkf {
   template <typename Delta, typename Out>
   void fillGaugeDirections(const Delta& delta, double scale, Out& Nt) const {
     if constexpr (kObservabilityConstrainedApplies) {
-      const RobotState x = mean_.template head<kRobotDim>() + scale * delta.template head<kRobotDim>();
-      Nt.template leftCols<kRobotDim>() = robot_.gaugeDirections(x).transpose();
+      if constexpr (kRobotOnManifold) {
+        const RobotState x = Robot::plus(robot_mean_, scale * delta.template head<kRobotDim>());
+        Nt.template leftCols<kRobotDim>() = (Robot::minusJacobian(x) * robot_.gaugeDirections(x)).transpose();
+      } else {
+        const RobotState x = robot_mean_ + scale * delta.template head<kRobotDim>();
+        Nt.template leftCols<kRobotDim>() = robot_.gaugeDirections(x).transpose();
+      }
       for (const LandmarkSlot& s : slots_) fillSlotGauge(s, delta, scale, Nt, std::index_sequence_for<Landmarks_...>());
     } else {
       (void)delta;
@@ -1355,6 +1440,17 @@ class BasicEkf {
     }
   }
 
+  /// mean (+)= delta: the robot through its `plus` on a manifold, every other block added.
+  template <typename Delta>
+  void applyMeanIncrement(const Delta& delta) {
+    if constexpr (kRobotOnManifold) {
+      robot_mean_ = Robot::plus(robot_mean_, delta.template head<kRobotDim>());
+    } else {
+      robot_mean_ += delta.template head<kRobotDim>();
+    }
+    mean_.segment(kRobotDim, n_ - kRobotDim) += delta.tail(n_ - kRobotDim);
+  }
+
   /// Workspace for the mean increment of an update (grows only with the state).
   Eigen::Map<Eigen::VectorXd> meanIncrement() {
     if (delta_.size() < n_) delta_.resize(n_);
@@ -1398,12 +1494,14 @@ class BasicEkf {
   /// A robot that also defines `normalizationJacobian(x)` (the camera's quaternion
   /// renormalization) has its covariance carried through that Jacobian as well.
   void normalizeAll() {
-    if constexpr (detail::HasNormalizationJacobian<Robot>::value) {
+    if constexpr (kRobotOnManifold) {
+      // `plus` keeps the robot on its manifold: nothing to renormalize.
+    } else if constexpr (detail::HasNormalizationJacobian<Robot>::value) {
       const Mat<kRobotDim, kRobotDim> N = Robot::normalizationJacobian(robotMean());
-      detail::normalize<Robot>(mean_.template head<kRobotDim>());
+      detail::normalize<Robot>(robot_mean_);
       transformRobotBlock(N, RobotCovariance::Zero());
     } else {
-      detail::normalize<Robot>(mean_.template head<kRobotDim>());
+      detail::normalize<Robot>(robot_mean_);
     }
     constexpr bool any = (detail::HasNormalize<Landmarks_>::value || ...);
     if constexpr (any) {
@@ -1422,12 +1520,19 @@ class BasicEkf {
   Robot robot_;
   int n_ = 0;
   int capacity_ = 0;
+  /// The robot's mean, its linearization point for kFirstEstimates (its latest prediction) and
+  /// for kIdeal (the true state handed over, NaN after each predict).
+  RobotState robot_mean_;
+  RobotState robot_first_;
+  RobotState robot_ideal_;
+  /// The landmarks' means, laid out as the covariance's rows (the robot's first kRobotDim
+  /// entries are unused: the robot's mean is robot_mean_).
   Eigen::VectorXd mean_;
-  /// Linearization points for kFirstEstimates, laid out as mean_: the robot's latest
-  /// prediction, then each landmark's estimate when it entered the state.
+  /// Linearization points for kFirstEstimates, laid out as mean_: each landmark's estimate
+  /// when it entered the state.
   Eigen::VectorXd first_;
   /// Linearization points for kIdeal, laid out as mean_: the true states the caller handed
-  /// over, NaN where none is (a new landmark, the robot after each predict).
+  /// over, NaN where none is (a new landmark).
   Eigen::VectorXd ideal_;
   LinearizationPoint linearization_ = LinearizationPoint::kCurrentEstimate;
   IteratedUpdate iterated_;

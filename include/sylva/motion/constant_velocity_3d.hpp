@@ -63,6 +63,7 @@ struct ConstantVelocity3D {
   static constexpr int kDim = 13;
   static constexpr int kControlDim = 0;
   static constexpr int kNoiseDim = 6;  ///< [linear acceleration (3), angular acceleration (3)]
+  static constexpr int kQuaternion = 3;  ///< index of q's w entry (OnManifold: the state on SO(3) x R^9)
   static constexpr const char* kName = "ConstantVelocity3D";
   using State = Vec<13>;
   using Control = Vec<0>;
