@@ -33,7 +33,7 @@ namespace unity_manifold_robot {
 
 using Camera = OnManifold<ConstantVelocity3D>;
 using ManifoldFilter = Ekf<Camera, InverseDepth, Point3>;
-using Frame = ConstantVelocity3D::VelocityFrame;
+using ManifoldFrame = ConstantVelocity3D::VelocityFrame;
 using Catch::Matchers::Contains;
 const PinholeCamera kIntrinsics{500.0, 500.0, 320.0, 240.0, 640, 480};
 
@@ -193,8 +193,8 @@ TEST_CASE("manifold robot: plusJacobian and minusJacobian match numerical and au
 }
 
 TEST_CASE("manifold robot: the filter equals a dense tangent-space EKF written here", "[filter][manifold]") {
-  for (const Frame frame : {Frame::kWorld, Frame::kCamera}) {
-    INFO("velocity frame " << (frame == Frame::kWorld ? "world" : "camera"));
+  for (const ManifoldFrame frame : {ManifoldFrame::kWorld, ManifoldFrame::kCamera}) {
+    INFO("velocity frame " << (frame == ManifoldFrame::kWorld ? "world" : "camera"));
     const Camera motion{ConstantVelocity3D{frame}};
     const Vec<13> x0 = drivingCamera(0.3, Vec<3>(0.5, -0.2, 1.5));
     Mat<12, 12> P0 = Mat<12, 12>::Zero();
@@ -277,7 +277,7 @@ TEST_CASE("manifold robot: the ideal and iterated modes reduce to the textbook o
 TEST_CASE("manifold robot: observability-constrained updates add no information along the gauge", "[filter][manifold]") {
   const Vec<13> x0 = drivingCamera(0.8, Vec<3>(-1.0, 3.0, 1.5));
   Mat<12, 12> P0 = Mat<12, 12>::Identity() * 1e-3;
-  ManifoldFilter ekf(x0, P0, Camera{ConstantVelocity3D{Frame::kCamera}});
+  ManifoldFilter ekf(x0, P0, Camera{ConstantVelocity3D{ManifoldFrame::kCamera}});
   ekf.setLinearizationPoint(LinearizationPoint::kObservabilityConstrained);
   const PinholePoint<InverseDepth> model(kIntrinsics);
   const InverseDepthInitialization init(kIntrinsics, 0.1, 0.5);
