@@ -100,6 +100,27 @@ TEST_CASE("readNumericTable reads CSV and refuses empty fields", "[datasets]") {
   CHECK(contains(error, ":1: the line ends with an empty field"));
 }
 
+TEST_CASE("readNumericTable: a delimiter set that mixes a blank with another character, at the end of a line",
+          "[datasets]") {
+  // Such a set is read like blanks: a run of delimiters separates two fields, and a run at the
+  // end of a line ends it (it once threw std::out_of_range there).
+  for (const char* delimiters : {" ,", " ;", "\t|"}) {
+    NumericTableFormat f = fields(2, 2);
+    f.delimiters = delimiters;
+    const std::string b(1, delimiters[0]);  // the set's blank
+    const std::string d(1, delimiters[1]);  // and its other character
+    std::string error;
+    const auto rows = readText("1" + d + "2" + d + "\n3" + b + d + b + "4" + d + d + "\n", f, error);
+    INFO("delimiters '" << delimiters << "': " << error);
+    REQUIRE(error.empty());
+    REQUIRE(rows.size() == 2);
+    CHECK(rows[0] == std::vector<double>{1.0, 2.0});
+    CHECK(rows[1] == std::vector<double>{3.0, 4.0});
+    readText("1" + d + "2" + d + "x" + d + "\n", f, error);
+    CHECK(contains(error, ":1: field 3 is not a finite number: 'x'"));
+  }
+}
+
 TEST_CASE("readNumericTable: a missing file, whole numbers and the callback's own checks", "[datasets]") {
   std::string error;
   try {

@@ -172,6 +172,14 @@ TEST_CASE("UTIAS loader names file and line of every malformed row", "[datasets]
   CHECK(contains(e, "Landmark_Groundtruth.dat:7: subject 3 is not a landmark"));
   e = loadError("Landmark_Groundtruth.dat", kLandmarks + "  6 \t 1 \t 2 \t 0 \t 0 \r\n");
   CHECK(contains(e, "Landmark_Groundtruth.dat:7: subject 6 is listed twice"));
+  // Integers beyond int's range are refused, not narrowed onto a valid barcode or subject
+  // (4294967357 would wrap to barcode 63's neighbour 61, 4294967302 to landmark 6).
+  for (const char* big : {"4294967357", "-4294967235", "4294967296"}) {
+    e = loadError("Robot1_Measurement.dat", kMeasurement + "1248446193.300 \t " + big + " \t 5.4 \t 0.1\r\n");
+    CHECK(contains(e, std::string(":10: the barcode must be in [0, 100000], got ") + big));
+  }
+  e = loadError("Landmark_Groundtruth.dat", kLandmarks + "  4294967302 \t 1 \t 2 \t 0 \t 0 \r\n");
+  CHECK(contains(e, "Landmark_Groundtruth.dat:7: subject 4294967302 is not a landmark of Barcodes.dat"));
   CHECK(loadError("Robot1_Odometry.dat", kOdometry) == "");
 
   const TempFolder dir("utias_mrclam_missing");

@@ -6,6 +6,7 @@
 #include <sylva/sylva.hpp>
 
 #include "filter/test_models.hpp"
+#include "error_helpers.hpp"
 #include "filter_snapshot.hpp"
 #include "sylva_catch.hpp"
 
@@ -165,6 +166,34 @@ TEST_CASE("construction validates the prior and the noise", "[filter][errors]") 
   cov << 1.0, 0.2, 0.1, 1.0;
   CHECK_THROWS_WITH(Gaussian<2>::covariance(cov), Contains("not symmetric"));
   CHECK(Gaussian<2>::variances(Vec<2>(4.0, 9.0)).covariance() == Mat<2, 2>(Vec<2>(4.0, 9.0).asDiagonal()));
+  // A variance is named as the variance the caller passed, with the code of what is wrong.
+  CHECK_THROWS_WITH(Gaussian<2>::variances(Vec<2>(-1.0, 1.0)), Contains("variance[0] = -1 must be finite and > 0"));
+  CHECK(sylva_test::throwsCode([] { Gaussian<2>::variances(Vec<2>(-1.0, 1.0)); }, ErrorCode::kNotPositiveDefinite));
+  CHECK(sylva_test::throwsCode([] { Gaussian<2>::variances(Vec<2>(1.0, kInf)); }, ErrorCode::kNonFinite));
+}
+
+TEST_CASE("finite inputs whose products overflow are refused before the filter changes", "[filter][errors]") {
+  Filter ekf = makeFilter();
+  // The predict noise term G Q G^T overflows: a speed noise of 1e150 m/s (its variance 1e300
+  // is finite) over a step of 1e6 s.
+  requireRejected(ekf, ErrorCode::kNonFinite, "not finite",
+                  [&] { ekf.predict(Vec<2>(1.0, 0.0), 1e6, Gaussian<2>::sigmas(Vec<2>(1e150, 0.05))); });
+  // The new block of add: a range of 1e160 m puts 1e320 into J P J^T.
+  requireRejected(ekf, ErrorCode::kNonFinite, "not finite", [&] {
+    ekf.add(9, InverseRangeBearing{}, Vec<2>(1e160, 0.5), Gaussian<2>::sigmas(Vec<2>(0.1, 0.02)));
+  });
+}
+
+TEST_CASE("innovation refuses an innovation covariance that is not positive definite", "[filter][errors]") {
+  Mat<3, 3> P0 = Mat<3, 3>::Zero();
+  P0(0, 0) = -1e-13;
+  Ekf<Unicycle2D, Point2> ekf(Vec<3>::Zero(), P0);
+  ekf.add(1, InverseRangeBearing{}, Vec<2>(2.0, 0.0), Gaussian<2>::sigmas(Vec<2>(0.1, 0.02)));
+  // S = 1e12 * (-1e-13) + 0.01 < 0: a gate would read a negative NIS as a perfect match.
+  requireRejected(ekf, ErrorCode::kNotPositiveDefinite, "not positive definite",
+                  [&] { ekf.innovation(AmplifiedX{}, 1, Vec<1>(0.0), Gaussian<1>::sigmas(Vec<1>(0.1))); });
+  Innovation<1> bad{Vec<1>(1.0), Mat<1, 1>(-0.5)};
+  CHECK(sylva_test::throwsCode([&] { (void)bad.nis(); }, ErrorCode::kNotPositiveDefinite));
 }
 
 }  // namespace unity_filter_bad_input

@@ -132,15 +132,17 @@ TEST_CASE("rejected tree reparametrizations and updates leave the filter unchang
   CHECK(s.ekf.covariance() == cov1);
 
   // With an uncertain radius (the width was measured with a 20 px sigma), an implausible
-  // negative width measured precisely would drive the radius below zero: the update is
-  // refused and nothing moves.
+  // negative width measured precisely would drive the radius below zero: TreeWidth declares
+  // it no measurement (as InverseTreeWidth does), so the update is refused before anything
+  // moves. (The posterior domain check behind it, radius > 0, is tested with the laser's
+  // diameter and the IDR trees.)
   const Vec<3> z_thin(z[0], z[1], -30.0);
   try {
     s.ekf.update(TreeWidth(kCamera), 2, z_thin, Gaussian<3>::sigmas(Vec<3>(1.0, 1.0, 0.01)));
-    FAIL("an update to a negative radius was accepted");
+    FAIL("an update with a negative width was accepted");
   } catch (const Error& e) {
-    CHECK(e.code() == ErrorCode::kOutOfDomain);
-    CHECK(std::string(e.what()).find("radius") != std::string::npos);
+    CHECK(e.code() == ErrorCode::kDegenerateGeometry);
+    CHECK(std::string(e.what()).find("width must be > 0") != std::string::npos);
   }
   CHECK(s.ekf.mean() == mean1);
   CHECK(s.ekf.covariance() == cov1);
@@ -152,7 +154,7 @@ TEST_CASE("rejected tree reparametrizations and updates leave the filter unchang
   const Eigen::VectorXd mean2 = joseph.mean();
   const Eigen::MatrixXd cov2 = joseph.covariance();
   CHECK(throwsCode([&] { joseph.update(TreeWidth(kCamera), 5, z_thin, Gaussian<3>::sigmas(Vec<3>(1.0, 1.0, 0.01))); },
-                   ErrorCode::kOutOfDomain));
+                   ErrorCode::kDegenerateGeometry));
   CHECK(joseph.mean() == mean2);
   CHECK(joseph.covariance() == cov2);
 }

@@ -16,13 +16,17 @@
 #include <Eigen/Geometry>
 
 #include <sylva/diff/auto_diff.hpp>
+#include <sylva/filter/ekf.hpp>
+#include <sylva/measurements/inverse_depth_tree_width.hpp>
 #include <sylva/landmarks/tree_xyzr.hpp>
 #include <sylva/measurements/pinhole_camera.hpp>
 #include <sylva/measurements/tree_width.hpp>
 #include <sylva/sim/random.hpp>
 #include <sylva/testing/check_jacobians.hpp>
 
+#include "copy_init.hpp"
 #include "error_helpers.hpp"
+#include "filter_snapshot.hpp"
 
 // Own namespace: the tests of a folder are compiled as one unity translation unit.
 namespace unity_measurements_tree_width {
@@ -400,3 +404,31 @@ TEST_CASE("TreeWidth rejects degenerate geometry and bad input with a reason",
 }
 
 }  // namespace unity_measurements_tree_width
+
+TEST_CASE("the filter refuses a measured width that is not positive, as InverseTreeWidth does",
+          "[measurements][tree_width][errors]") {
+  using namespace unity_measurements_tree_width;
+  const TreeWidth model(kCamera);
+  const Vec<13> camera = lookAt(Vec<3>(0.0, 0.0, 1.5), Vec<3>(5.0, 0.0, 0.5));
+  Ekf<ConstantVelocity3D, TreeXYZR, InverseDepthRadius> ekf(camera, Mat<13, 13>::Identity() * 1e-6);
+  ekf.add(1, sylva_test::CopyInit<ConstantVelocity3D, TreeXYZR>{}, treeAt(5.0, 0.0, 0.0, 0.3),
+          Gaussian<4>::sigmas(Vec<4>::Constant(0.1)));
+  const Gaussian<3> noise = Gaussian<3>::sigmas(Vec<3>::Constant(1.0));
+  const Vec<3> z = model(camera, treeAt(5.0, 0.0, 0.0, 0.3));
+  for (const double width : {0.0, -3.0}) {
+    const Vec<3> bad(z[0], z[1], width);
+    sylva_test::requireRejected(ekf, ErrorCode::kDegenerateGeometry, "the measured width must be > 0",
+                                [&] { ekf.update(model, 1, bad, noise); });
+    sylva_test::requireRejected(ekf, ErrorCode::kDegenerateGeometry, "the measured width must be > 0",
+                                [&] { (void)ekf.innovation(model, 1, bad, noise); });
+    const std::vector<Observation<TreeWidth>> batch{{1, z, noise}, {1, bad, noise}};
+    sylva_test::requireRejected(ekf, ErrorCode::kDegenerateGeometry, "measurement 1",
+                                [&] { ekf.update(model, batch); });
+    sylva_test::requireRejected(ekf, ErrorCode::kDegenerateGeometry, "the measured width must be > 0",
+                                [&] { ekf.update(model, batch, Fusion::kSequential); });
+  }
+  // The inverse-depth width model measures the same width.
+  CHECK(InverseDepthTreeWidth::measurementViolation(Vec<3>(300.0, 200.0, -1.0)) != nullptr);
+  CHECK(InverseDepthTreeWidth::measurementViolation(Vec<3>(300.0, 200.0, 4.0)) == nullptr);
+  REQUIRE_NOTHROW(ekf.update(model, 1, z, noise));
+}

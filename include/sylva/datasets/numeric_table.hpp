@@ -138,6 +138,9 @@ void readNumericTable(const std::string& path, const NumericTableFormat& format,
       // blank-separated fields any run of blanks counts once, and the line has no trailing
       // blanks left, so another field follows.
       pos = csv ? stop + 1 : line.find_first_not_of(format.delimiters, stop);
+      // A delimiter set that mixes a blank with another character (" ,") leaves that
+      // character at the end of a line: a trailing run of delimiters ends it, as blanks do.
+      if (pos == std::string::npos) break;
     }
     if (row.size() < format.min_fields || row.size() > format.max_fields) {
       std::ostringstream os;

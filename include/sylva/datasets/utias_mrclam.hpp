@@ -173,7 +173,9 @@ inline UtiasDataset loadUtiasMrclam(const std::string& folder, const UtiasLoadOp
   const std::string landmarks = dir + "Landmark_Groundtruth.dat";
   readNumericTable(landmarks, detail::utiasColumns(5), [&](const NumericRow& row) {
     const long subject = row.integer(0, "the subject");
-    const auto it = data.barcode_of_subject.find(int(subject));
+    // (Range-checked before it is narrowed: 4294967302 is no subject 6.)
+    const auto it = subject >= 1 && subject <= 1000 ? data.barcode_of_subject.find(int(subject))
+                                                    : data.barcode_of_subject.end();
     if (subject <= kUtiasRobotCount || it == data.barcode_of_subject.end())
       row.fail("subject " + row.text(0) + " is not a landmark of Barcodes.dat");
     for (const auto& l : data.landmarks)
@@ -201,6 +203,7 @@ inline UtiasDataset loadUtiasMrclam(const std::string& folder, const UtiasLoadOp
     robot.measurement_rows =
         detail::readUtiasTimedTable(prefix + "Measurement.dat", 4, "measurement", [&](const NumericRow& row) {
           const long barcode = row.integer(1, "the barcode");
+          if (barcode < 0 || barcode > 100000) row.fail("the barcode must be in [0, 100000], got " + row.text(1));
           if (!(row[2] > 0.0)) row.fail("the range must be > 0, got " + row.text(2));
           if (std::abs(row[3]) > kPi + 1e-3) row.fail("the bearing must be in [-pi, pi], got " + row.text(3));
           const auto it = data.subject_of_barcode.find(int(barcode));

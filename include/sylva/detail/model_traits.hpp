@@ -67,6 +67,17 @@ struct HasResidual<Model,
                        std::declval<const Vec<Model::kDim>&>(),
                        std::declval<const Vec<Model::kDim>&>()))>> : std::true_type {};
 
+/// A measurement model may declare which measurements it can make:
+/// `static const char* measurementViolation(const Vec<kDim>& z)` returns nullptr for a
+/// possible measurement and a short reason otherwise (TreeWidth: a width <= 0). The filter
+/// refuses the others before it uses them.
+template <typename Model, typename = void>
+struct HasMeasurementDomain : std::false_type {};
+template <typename Model>
+struct HasMeasurementDomain<
+    Model, std::void_t<decltype(Model::measurementViolation(std::declval<const Vec<Model::kDim>&>()))>>
+    : std::true_type {};
+
 template <typename Param, typename = void>
 struct HasNormalize : std::false_type {};
 template <typename Param>

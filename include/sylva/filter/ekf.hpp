@@ -487,11 +487,15 @@ class BasicEkf {
     if (!next.allFinite()) fail(ErrorCode::kNonFinite, "Ekf::predict: motion model produced a non-finite state");
 
     const RobotCovariance GQGt = G * noise.covariance() * G.transpose();
+    RobotCovariance P_rr_next = F * robotCovariance() * F.transpose() + GQGt;
+    if (!P_rr_next.allFinite() || !robotRowsStayFinite(F))
+      fail(ErrorCode::kNonFinite,
+           "Ekf::predict: the predicted covariance is not finite (the noise or the motion's Jacobian overflows it)");
     // From here on nothing can fail.
     robot_mean_ = next;
     robot_first_ = next;
     robot_ideal_.setConstant(std::numeric_limits<double>::quiet_NaN());
-    transformRobotBlock(F, GQGt);  // eq. 2.27
+    transformRobotBlock(F, P_rr_next);  // eq. 2.27
   }
 
   // ---------------------------------------------------------------- update
@@ -507,6 +511,7 @@ class BasicEkf {
     checkModel<Model>();
     constexpr int M = Model::kDim;
     if (!z.allFinite()) fail(ErrorCode::kNonFinite, nameOf<Model>() + ": measurement is not finite");
+    checkMeasurement(model, z);
     if (linearization_ == LinearizationPoint::kIterated) {
       // The iterations live in the batched update; the innovation returned is the prior's.
       const Innovation<M> prior = innovation(model, id, z, noise);
@@ -572,6 +577,7 @@ class BasicEkf {
       if (!obs.z.allFinite())
         fail(ErrorCode::kNonFinite, nameOf<Model>() + ": measurement " + std::to_string(i) +
                                         " of the batch is not finite");
+      checkMeasurement(model, obs.z, "batch", i);
       const Linearization<Model, kRobotDim> lin = linearize(model, obs.id);
       lins.store(i, lin);
       nu.template segment<M>(i * M) = detail::residual(model, obs.z, lin.z_hat);
@@ -691,11 +697,18 @@ class BasicEkf {
                                      Id id,
                                      const Vec<Model::kDim>& z,
                                      const Gaussian<Model::kDim>& noise) const {
+    if (!z.allFinite()) fail(ErrorCode::kNonFinite, nameOf<Model>() + ": measurement is not finite");
+    checkMeasurement(model, z);
     const Linearization<Model, kRobotDim> lin = linearize(model, id);
     Innovation<Model::kDim> result;
     result.nu = detail::residual(model, z, lin.z_hat);
     result.S = crossCovariance(lin, lin) + noise.covariance();
     result.S = (0.5 * (result.S + result.S.transpose())).eval();
+    // An S that is not positive definite would give a negative NIS, which passes any gate.
+    const Eigen::LLT<Mat<Model::kDim, Model::kDim>> llt(result.S);
+    if (llt.info() != Eigen::Success || !result.S.allFinite())
+      fail(ErrorCode::kNotPositiveDefinite,
+           nameOf<Model>() + ": innovation covariance S is not positive definite (landmark " + std::to_string(id) + ")");
     return result;
   }
 
@@ -732,8 +745,12 @@ class BasicEkf {
         fail(ErrorCode::kOutOfDomain, std::string(InverseModel::kName) + ": landmark " + std::to_string(id) + ": " + why);
     }
     const RobotCovariance P_rr = robotCovariance();
-    Mat<L, L> P_ll = J_l_x * P_rr * J_l_x.transpose() + J_l_z * noise.covariance() * J_l_z.transpose();
+    const Mat<L, kRobotDim> J_P_rr = J_l_x * P_rr;
+    Mat<L, L> P_ll = J_P_rr * J_l_x.transpose() + J_l_z * noise.covariance() * J_l_z.transpose();
     P_ll = (0.5 * (P_ll + P_ll.transpose())).eval();
+    if (!P_ll.allFinite() || !J_P_rr.allFinite() || !robotRowsStayFinite(J_l_x))
+      fail(ErrorCode::kNonFinite, std::string(InverseModel::kName) + ": the new landmark's covariance is not finite "
+                                                                     "(its Jacobians or noise overflow it)");
 
     ensureCapacity(n_ + L);  // may allocate; the filter is unchanged if it throws
     // From here on nothing can fail.
@@ -743,7 +760,7 @@ class BasicEkf {
     first_.template segment<L>(off) = mean_.template segment<L>(off);
     ideal_.template segment<L>(off).setConstant(std::numeric_limits<double>::quiet_NaN());
     // New rows (lower storage): [J_l_x P_rr, J_l_x P_rm]    (eq. 2.39, bottom row)
-    cov_.template block<L, kRobotDim>(off, 0).noalias() = J_l_x * P_rr;
+    cov_.template block<L, kRobotDim>(off, 0) = J_P_rr;
     const int m = n_ - kRobotDim;
     if (m > 0) {
       cov_.block(off, kRobotDim, L, m).noalias() =
@@ -916,6 +933,28 @@ class BasicEkf {
     }
   }
 
+  /// Throws kDegenerateGeometry when a model declares that `z` is no measurement it can make
+  /// (`measurementViolation`: TreeWidth's width <= 0), naming measurement `index` of the
+  /// `batch` ("batch", "sequence") if there is one. Builds no string unless it throws.
+  template <typename Model>
+  static void checkMeasurement(const Model& model, const Vec<Model::kDim>& z, const char* batch = nullptr,
+                               int index = 0) {
+    (void)model;
+    if constexpr (detail::HasMeasurementDomain<Model>::value) {
+      if (const char* why = Model::measurementViolation(z)) {
+        std::ostringstream os;
+        os << nameOf<Model>() << ": ";
+        if (batch != nullptr) os << "measurement " << index << " of the " << batch << ": ";
+        os << why << ", got z = [" << z.transpose() << "]";
+        fail(ErrorCode::kDegenerateGeometry, os.str());
+      }
+    } else {
+      (void)z;
+      (void)batch;
+      (void)index;
+    }
+  }
+
   /// Throws kOutOfDomain when a robot state is off the robot's manifold (a robot type that
   /// declares `domainViolation`, OnManifold's unit quaternion).
   static void checkRobotDomain(const RobotState& x, const char* what) {
@@ -936,6 +975,7 @@ class BasicEkf {
       if (!obs.z.allFinite())
         fail(ErrorCode::kNonFinite, nameOf<Model>() + ": measurement " + std::to_string(i) +
                                         " of the sequence is not finite");
+      checkMeasurement(model, obs.z, "sequence", i);
       typedSlot<typename Model::Landmark>(obs.id, Model::kName);
       ++i;
     }
@@ -1427,11 +1467,22 @@ class BasicEkf {
     }
   }
 
-  /// P_rr <- F P_rr F^T + added, P_mr <- P_mr F^T: the robot block and its cross-covariances
-  /// through a robot-only Jacobian F. O(n).
-  void transformRobotBlock(const Mat<kRobotDim, kRobotDim>& F, const RobotCovariance& added) {
-    const RobotCovariance P_rr = robotCovariance();
-    const RobotCovariance P_rr_next = F * P_rr * F.transpose() + added;
+  /// True when A P_rm stays finite for every landmark block (A: rows x kRobotDim): by
+  /// Cauchy-Schwarz |P_mr(i, j)| <= sqrt(P_ii P_jj), so each entry is at most the largest row
+  /// sum of |A| times sqrt(max P_mm diagonal * max P_rr diagonal). O(n) (the diagonal only).
+  template <int Rows>
+  bool robotRowsStayFinite(const Mat<Rows, kRobotDim>& A) const {
+    if (n_ == kRobotDim) return true;
+    double landmark_diag = 0.0;
+    for (int i = kRobotDim; i < n_; ++i) landmark_diag = std::max(landmark_diag, std::abs(cov_(i, i)));
+    const double robot_diag = cov_.diagonal().template head<kRobotDim>().cwiseAbs().maxCoeff();
+    const double bound = A.cwiseAbs().rowwise().sum().maxCoeff() * std::sqrt(landmark_diag) * std::sqrt(robot_diag);
+    return std::isfinite(bound) && bound < 0.5 * std::numeric_limits<double>::max();
+  }
+
+  /// P_rr <- P_rr_next, P_mr <- P_mr F^T: the robot block and its cross-covariances through a
+  /// robot-only Jacobian F. O(n).
+  void transformRobotBlock(const Mat<kRobotDim, kRobotDim>& F, const RobotCovariance& P_rr_next) {
     cov_.template topLeftCorner<kRobotDim, kRobotDim>() = 0.5 * (P_rr_next + P_rr_next.transpose());
     // Lower storage holds P_mr (m x r).
     for (int row = kRobotDim; row < n_; ++row) {
@@ -1499,7 +1550,7 @@ class BasicEkf {
     } else if constexpr (detail::HasNormalizationJacobian<Robot>::value) {
       const Mat<kRobotDim, kRobotDim> N = Robot::normalizationJacobian(robotMean());
       detail::normalize<Robot>(robot_mean_);
-      transformRobotBlock(N, RobotCovariance::Zero());
+      transformRobotBlock(N, RobotCovariance(N * robotCovariance() * N.transpose()));
     } else {
       detail::normalize<Robot>(robot_mean_);
     }

@@ -5,6 +5,7 @@
 
 #include <Eigen/Cholesky>
 
+#include "sylva/core/error.hpp"
 #include "sylva/core/types.hpp"
 
 namespace sylva {
@@ -30,7 +31,14 @@ struct Innovation {
   Mat<M, M> S;
   /// Normalized innovation squared nu^T S^-1 nu (eq. 2.46), the Mahalanobis distance^2 of
   /// eq. 2.40.
-  double nis() const { return nu.dot(S.llt().solve(nu)); }
+  /// Throws kNotPositiveDefinite when S is not positive definite (a negative "NIS" would pass
+  /// any gate).
+  double nis() const {
+    const Eigen::LLT<Mat<M, M>> llt(S);
+    if (llt.info() != Eigen::Success || !S.allFinite())
+      fail(ErrorCode::kNotPositiveDefinite, "Innovation::nis: the innovation covariance S is not positive definite");
+    return nu.dot(llt.solve(nu));
+  }
 };
 
 }  // namespace sylva

@@ -141,6 +141,12 @@ struct InverseDepthTreeWidth {
   /// Throws (see `PinholeCamera::validate`) for invalid intrinsics.
   explicit InverseDepthTreeWidth(const PinholeCamera& camera) : forward_(camera) {}
 
+  /// A width <= 0 pixels is no width a trunk can have: the filter refuses it (as
+  /// InverseTreeWidth does) instead of fusing it into a shrinking radius.
+  static const char* measurementViolation(const Vec<3>& z) {
+    return z[2] > 0.0 ? nullptr : "the measured width must be > 0 pixels";
+  }
+
   const PinholeCamera& camera() const { return forward_.camera(); }
 
   /// Predicted [u, v, w] (pixels), generic in the scalar for automatic differentiation:

@@ -82,6 +82,12 @@ struct TreeWidth {
   /// Throws (see `PinholeCamera::validate`) for invalid intrinsics.
   explicit TreeWidth(const PinholeCamera& camera) : camera_(camera) { camera_.validate(); }
 
+  /// A width <= 0 pixels is no width a trunk can have: the filter refuses it (as
+  /// InverseTreeWidth does) instead of fusing it into a shrinking radius.
+  static const char* measurementViolation(const Vec<3>& z) {
+    return z[2] > 0.0 ? nullptr : "the measured width must be > 0 pixels";
+  }
+
   const PinholeCamera& camera() const { return camera_; }
 
   /// Predicted [u, v, w] (pixels), generic in the scalar for automatic differentiation.

@@ -42,6 +42,13 @@ class Gaussian {
 
   /// Independent components with the given variances (units squared).
   static Gaussian variances(const Vec<N>& variance) {
+    for (int i = 0; i < N; ++i) {
+      if (!std::isfinite(variance[i]) || !(variance[i] > 0.0)) {
+        std::ostringstream os;
+        os << "Gaussian::variances: variance[" << i << "] = " << variance[i] << " must be finite and > 0";
+        fail(std::isfinite(variance[i]) ? ErrorCode::kNotPositiveDefinite : ErrorCode::kNonFinite, os.str());
+      }
+    }
     return sigmas(variance.array().sqrt().matrix().eval());
   }
 
