@@ -56,6 +56,7 @@ using sylva::Vec;
 
 struct Options {
   std::string data = UTIAS_DEFAULT_DATA;
+  bool data_given = false;  // --data was passed: a missing recording is then an error, not a skip
   int robot = 0;  // 0: all five
   double max_time_s = 0.0;
   bool json = false;
@@ -450,6 +451,15 @@ int leaveOneOut(const Options& o, const sylva::datasets::UtiasDataset& data) {
 }
 
 int run(const Options& o) {
+  if (o.data_given && !std::filesystem::exists(std::filesystem::path(o.data) / "Barcodes.dat")) {
+    // Only the default location may be absent (a user's fresh machine); a folder the user
+    // named must hold a recording.
+    std::cerr << "utias: --data '" << o.data << "': "
+              << (std::filesystem::is_directory(o.data) ? "no Barcodes.dat in this folder (not a MRCLAM recording)"
+                                                        : "no such folder")
+              << "\n";
+    return 2;
+  }
   if (!std::filesystem::exists(std::filesystem::path(o.data) / "Barcodes.dat")) {
     std::cerr << "utias: SKIPPED: no UTIAS MRCLAM dataset in '" << o.data << "'.\n"
               << "  Get MRCLAM_Dataset7 (17 .dat files) from the UTIAS MRCLAM page,\n"
@@ -555,8 +565,9 @@ int main(int argc, char** argv) {
   app.footer(
       "One noise configuration for all robots (examples/utias/noise_model.hpp, docs/examples/utias.md).\n"
       "Get the data from http://asrl.utias.utoronto.ca/datasets/mrclam/ and pass the folder with --data.");
-  app.add_option("--data", o.data, "folder of one MRCLAM recording (Barcodes.dat, Robot1_Odometry.dat, ...); its name labels the output")
-      ->capture_default_str();
+  CLI::Option* data_option =
+      app.add_option("--data", o.data, "folder of one MRCLAM recording (Barcodes.dat, Robot1_Odometry.dat, ...); its name labels the output")
+          ->capture_default_str();
   app.add_option("--robot", o.robot, "robot 1-5 (0: all five)")->check(CLI::Range(0, 5))->capture_default_str();
   app.add_option("--max-time", o.max_time_s, "stop after this many seconds of data (0: all)")
       ->check(positive(true))
@@ -626,6 +637,7 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0.5, 0.999999))
       ->capture_default_str();
   CLI11_PARSE(app, argc, argv);
+  o.data_given = data_option->count() > 0;
   try {
     return run(o);
   } catch (const sylva::Error& e) {
