@@ -22,30 +22,9 @@ inline void countEigenAssertFailure(const char* what) {
 
 #include "sylva_catch.hpp"
 
-namespace {
-std::atomic<long> g_allocations{0};
-}
+#include "replaced_operator_new.hpp"
 
-void* operator new(std::size_t size) {
-  ++g_allocations;
-  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
-  throw std::bad_alloc();
-}
-// Every form is replaced, so that memory never crosses between our malloc and a sanitizer's
-// allocator (Catch2 uses the nothrow form).
-void* operator new[](std::size_t size) { return operator new(size); }
-void* operator new(std::size_t size, const std::nothrow_t&) noexcept {
-  ++g_allocations;
-  return std::malloc(size == 0 ? 1 : size);
-}
-void* operator new[](std::size_t size, const std::nothrow_t& tag) noexcept { return operator new(size, tag); }
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete[](void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
-void operator delete(void* p, const std::nothrow_t&) noexcept { std::free(p); }
-void operator delete[](void* p, const std::nothrow_t&) noexcept { std::free(p); }
-
+using sylva_test::g_allocations;
 using namespace sylva;
 
 TEMPLATE_TEST_CASE("predict and a single update do not allocate in steady state", "[filter][allocation]",

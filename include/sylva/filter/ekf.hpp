@@ -751,8 +751,16 @@ class BasicEkf {
     if (!P_ll.allFinite() || !J_P_rr.allFinite() || !robotRowsStayFinite(J_l_x))
       fail(ErrorCode::kNonFinite, std::string(InverseModel::kName) + ": the new landmark's covariance is not finite "
                                                                      "(its Jacobians or noise overflow it)");
-
-    ensureCapacity(n_ + L);  // may allocate; the filter is unchanged if it throws
+    // The new block's rows against the landmarks, J_l_x P_rm, computed before anything is
+    // written: the product (and its buffer) may allocate for a large state.
+    const int m = n_ - kRobotDim;
+    const Eigen::Matrix<double, L, Eigen::Dynamic> J_P_rm = J_l_x * cov_.block(kRobotDim, 0, m, kRobotDim).transpose();
+    // Everything that may allocate comes first, and the filter is unchanged if it throws: the
+    // slot list's room (doubling), the storage (which only grows), then the id's entry in the
+    // index (the last thing that can fail).
+    if (slots_.size() == slots_.capacity()) slots_.reserve(std::max<std::size_t>(8, 2 * slots_.capacity()));
+    ensureCapacity(n_ + L);
+    index_.emplace(id, slots_.size());
     // From here on nothing can fail.
     const int off = n_;
     mean_.template segment<L>(off) = l;
@@ -761,15 +769,10 @@ class BasicEkf {
     ideal_.template segment<L>(off).setConstant(std::numeric_limits<double>::quiet_NaN());
     // New rows (lower storage): [J_l_x P_rr, J_l_x P_rm]    (eq. 2.39, bottom row)
     cov_.template block<L, kRobotDim>(off, 0) = J_P_rr;
-    const int m = n_ - kRobotDim;
-    if (m > 0) {
-      cov_.block(off, kRobotDim, L, m).noalias() =
-          J_l_x * cov_.block(kRobotDim, 0, m, kRobotDim).transpose();
-    }
+    if (m > 0) cov_.block(off, kRobotDim, L, m) = J_P_rm;
     cov_.template block<L, L>(off, off) = P_ll;
     n_ += L;
-    index_.emplace(id, slots_.size());
-    slots_.push_back(LandmarkSlot{id, typeIndexOf<Landmark>(), off, L});
+    slots_.push_back(LandmarkSlot{id, typeIndexOf<Landmark>(), off, L});  // room reserved above
   }
 
   /// Removes landmark `id`: its rows and columns leave the state. O(n^2) (moves).
@@ -1146,9 +1149,9 @@ class BasicEkf {
   void eraseBlock(int off, int d) {
     const int tail = n_ - off - d;
     if (tail > 0) {
-      mean_.segment(off, tail) = mean_.segment(off + d, tail).eval();
-      first_.segment(off, tail) = first_.segment(off + d, tail).eval();
-      ideal_.segment(off, tail) = ideal_.segment(off + d, tail).eval();
+      // Moved down in place (std::copy runs forwards, so an overlap is safe): no temporary,
+      // so nothing here can fail.
+      for (Eigen::VectorXd* v : {&mean_, &first_, &ideal_}) std::copy(v->data() + off + d, v->data() + off + d + tail, v->data() + off);
       // Columns left of the block: move their lower rows up by d.
       for (int j = 0; j < off; ++j) {
         double* col = cov_.col(j).data();
@@ -1220,6 +1223,9 @@ class BasicEkf {
       toInvariantIncrement(delta);
       prepareGaugeTransport(delta);
       checkPosteriorDomain(delta);  // may throw; nothing of the filter is written yet
+      // R K^T before anything is written: it allocates (M x n), and a failed allocation must
+      // leave the filter as it was.
+      const Eigen::Matrix<double, M, Eigen::Dynamic> RKt = R * K.transpose();
       applyMeanIncrement(delta);
       // A = (I - K H) P = P - K (P H^T)^T on the full matrix.
       P.template triangularView<Eigen::StrictlyUpper>() = P.transpose();
@@ -1228,7 +1234,6 @@ class BasicEkf {
       applyHt(P, PHt);
       // P = A - B K^T + K R K^T  ((I - K H) P (I - K H)^T + K R K^T)
       P.noalias() -= PHt * K.transpose();
-      const Eigen::Matrix<double, M, Eigen::Dynamic> RKt = R * K.transpose();
       P.noalias() += K * RKt;
     } else {
       (void)R;

@@ -1,0 +1,182 @@
+// The strong guarantee under failed allocations: every operation that changes the filter
+// (predict, update in each form, add, remove, reparametrize) is run once per allocation it
+// makes, with that allocation failing (std::bad_alloc); each time the filter must be exactly
+// as it was, and must then do the operation as an untouched copy does.
+//
+// Allocations are counted in the replaced global operator new (replaced_operator_new.hpp)
+// and, for Eigen's own (which go through malloc), through EIGEN_RUNTIME_NO_MALLOC: while a
+// fault is armed Eigen's malloc check fails on every heap allocation, and this file routes
+// that check to the same counter, which throws std::bad_alloc at the chosen allocation (as
+// Eigen itself does when malloc fails).
+
+#include <atomic>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <new>
+
+#include "replaced_operator_new.hpp"
+
+namespace {
+std::atomic<long> g_other_eigen_asserts{0};
+void onEigenAssert(const char* what) {
+  if (std::strstr(what, "heap allocation is forbidden") != nullptr) {
+    sylva_test::countAllocation();
+  } else {
+    ++g_other_eigen_asserts;
+    std::fprintf(stderr, "eigen_assert failed: %s\n", what);
+  }
+}
+}  // namespace
+#define EIGEN_RUNTIME_NO_MALLOC
+#define eigen_assert(x) ((x) ? static_cast<void>(0) : onEigenAssert(#x))
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <sylva/sylva.hpp>
+
+#include "copy_init.hpp"
+#include "filter_snapshot.hpp"
+#include "sylva_catch.hpp"
+
+using sylva_test::g_allocations;
+using sylva_test::g_fail_at;
+
+using namespace sylva;
+
+namespace {
+
+/// Runs `operation` on copies of `filter`, failing its 1st, 2nd, ... allocation until it
+/// completes. After each failure the copy must equal `filter` (mean, covariance, slots, and
+/// `unchanged(copy)` for what a snapshot does not see), and the operation repeated on it
+/// without a fault must give exactly what it gives on a fresh copy. Returns the number of
+/// allocations the operation made.
+template <typename Filter>
+long everyAllocationFails(const Filter& filter, const std::function<void(Filter&)>& operation,
+                          const std::function<bool(const Filter&)>& unchanged = nullptr) {
+  Filter reference = filter;
+  operation(reference);
+  const sylva_test::Snapshot expected(reference);
+  const sylva_test::Snapshot before(filter);
+  for (long k = 1; k < 10000; ++k) {
+    Filter copy = filter;
+    bool failed = false;
+    g_allocations = 0;
+    g_fail_at = k;
+    Eigen::internal::set_is_malloc_allowed(false);
+    try {
+      operation(copy);
+    } catch (const std::bad_alloc&) {
+      failed = true;
+    }
+    Eigen::internal::set_is_malloc_allowed(true);
+    g_fail_at = 0;
+    if (!failed) return k - 1;
+    INFO("allocation " << k << " failed");
+    CHECK(sylva_test::Snapshot(copy) == before);
+    if (unchanged) CHECK(unchanged(copy));
+    operation(copy);
+    CHECK(sylva_test::Snapshot(copy) == expected);
+  }
+  FAIL("the operation never completed");
+  return -1;
+}
+
+using Planar = Ekf<Unicycle2D, Point2>;
+using PlanarJoseph = JosephEkf<Unicycle2D, Point2>;
+const auto kReading = Gaussian<2>::sigmas(Vec<2>(0.1, 0.02));
+
+/// A planar filter with landmarks 1..6 and no update yet (its workspaces are empty, so the
+/// operations below allocate them).
+template <typename Filter>
+Filter planarFilter() {
+  Filter ekf(Vec<3>(0.5, -0.2, 0.3), Mat<3, 3>(Vec<3>(0.01, 0.02, 0.003).asDiagonal()));
+  for (int i = 1; i <= 6; ++i) ekf.add(i, InverseRangeBearing{}, Vec<2>(3.0 + i, -1.2 + 0.4 * i), kReading);
+  return ekf;
+}
+
+}  // namespace
+
+TEST_CASE("fault injection: predict, add and remove leave the filter as it was when an allocation fails",
+          "[filter][faults]") {
+  const Planar ekf = planarFilter<Planar>();
+  everyAllocationFails<Planar>(ekf, [](Planar& f) { f.predict(Vec<2>(1.0, 0.1), 0.1, Gaussian<2>::sigmas(Vec<2>(0.1, 0.05))); });
+  // add: the storage grows (capacity 1 more than the state would not do), a slot and an id
+  // are recorded.
+  const long adds = everyAllocationFails<Planar>(
+      ekf, [](Planar& f) { f.add(7, InverseRangeBearing{}, Vec<2>(5.0, 0.2), kReading); },
+      [](const Planar& f) { return !f.contains(7); });
+  CHECK(adds >= 1);
+  // remove a landmark from the middle: the blocks after it move up.
+  everyAllocationFails<Planar>(ekf, [](Planar& f) { f.remove(3); }, [](const Planar& f) { return f.contains(3); });
+}
+
+TEST_CASE("fault injection: every form of update leaves the filter as it was when an allocation fails",
+          "[filter][faults]") {
+  const Planar ekf = planarFilter<Planar>();
+  const RangeBearing model;
+  const auto reading = [&](const Planar& f, Id id) {
+    return Vec<2>(model(f.robotMean(), f.landmarkMean<Point2>(id)) + Vec<2>(0.05, -0.01));
+  };
+  const long single = everyAllocationFails<Planar>(ekf, [&](Planar& f) { f.update(model, 2, reading(f, 2), kReading); });
+  CHECK(single >= 1);  // the first update sizes its workspaces
+  everyAllocationFails<Planar>(ekf, [&](Planar& f) {
+    const std::vector<Observation<RangeBearing>> batch{{1, reading(f, 1), kReading}, {4, reading(f, 4), kReading},
+                                                       {6, reading(f, 6), kReading}};
+    f.update(model, batch);
+  });
+  for (const LinearizationPoint point :
+       {LinearizationPoint::kFirstEstimates, LinearizationPoint::kInvariant, LinearizationPoint::kIterated}) {
+    Planar moded = ekf;
+    moded.setLinearizationPoint(point);
+    everyAllocationFails<Planar>(moded, [&](Planar& f) { f.update(model, 5, reading(f, 5), kReading); });
+  }
+  const PlanarJoseph joseph = planarFilter<PlanarJoseph>();
+  everyAllocationFails<PlanarJoseph>(joseph, [&](PlanarJoseph& f) {
+    f.update(model, 2, Vec<2>(model(f.robotMean(), f.landmarkMean<Point2>(2)) + Vec<2>(0.05, -0.01)), kReading);
+  });
+  everyAllocationFails<PlanarJoseph>(joseph, [&](PlanarJoseph& f) {
+    const std::vector<Observation<RangeBearing>> batch{
+        {1, Vec<2>(model(f.robotMean(), f.landmarkMean<Point2>(1)) + Vec<2>(0.02, 0.0)), kReading},
+        {3, Vec<2>(model(f.robotMean(), f.landmarkMean<Point2>(3)) - Vec<2>(0.02, 0.01)), kReading}};
+    f.update(model, batch);
+  });
+}
+
+TEST_CASE("fault injection: the monocular filter's updates and reparametrizations", "[filter][faults]") {
+  using Mono = Ekf<OnManifold<ConstantVelocity3D>, InverseDepth, Point3, TreeXYZR>;
+  const PinholeCamera camera{500.0, 500.0, 320.0, 240.0, 640, 480};
+  // Camera 1.5 m above the ground looking along world +x: camera x = -y_W, y = -z_W, z = x_W.
+  Vec<13> x0 = Vec<13>::Zero();
+  x0.head<3>() = Vec<3>(0.0, 0.0, 1.5);
+  x0.segment<4>(3) = Vec<4>(0.5, -0.5, 0.5, -0.5);
+  x0.segment<3>(7) = Vec<3>(1.0, 0.0, 0.0);
+  Mono ekf(x0, Mat<12, 12>::Identity() * 1e-4);
+  const PinholePoint<Point3> xyz(camera);
+  const PinholePoint<InverseDepth> id_model(camera);
+  const TreeWidth width(camera);
+  const InverseDepthInitialization init(camera);
+  const auto pixel = Gaussian<2>::sigmas(Vec<2>(1.0, 1.0));
+  const auto pixel_width = Gaussian<3>::sigmas(Vec<3>(1.0, 1.0, 1.0));
+  std::vector<Vec<4>> trees;
+  for (int i = 0; i < 6; ++i) trees.emplace_back(6.0 + 0.8 * i, -2.0 + 0.7 * i, 0.0, 0.2 + 0.01 * i);
+  for (int i = 0; i < 6; ++i) ekf.add(i, init, init.measurement(xyz(x0, Vec<3>(trees[i].head<3>()))), init.noise(pixel));
+  ekf.reparametrize(4, InverseDepthToPoint3<ConstantVelocity3D>{});
+  everyAllocationFails<Mono>(ekf, [&](Mono& f) { f.reparametrize(1, InverseDepthToPoint3<ConstantVelocity3D>{}); },
+                             [](const Mono& f) { return f.holds<InverseDepth>(1); });
+  everyAllocationFails<Mono>(ekf, [&](Mono& f) { f.reparametrize(4, InverseTreeWidth(camera), width(x0, trees[4]), pixel_width); },
+                             [](const Mono& f) { return f.holds<Point3>(4); });
+  for (const LinearizationPoint point : {LinearizationPoint::kCurrentEstimate, LinearizationPoint::kObservabilityConstrained}) {
+    Mono moded = ekf;
+    moded.setLinearizationPoint(point);
+    everyAllocationFails<Mono>(moded, [&](Mono& f) {
+      f.update(id_model, 2, id_model(f.robotMean(), f.landmarkMean<InverseDepth>(2)) + Vec<2>(0.4, -0.3), pixel);
+    });
+    everyAllocationFails<Mono>(moded, [&](Mono& f) {
+      f.update(xyz, 4, xyz(f.robotMean(), f.landmarkMean<Point3>(4)) + Vec<2>(-0.3, 0.2), pixel);
+    });
+  }
+  CHECK(g_other_eigen_asserts.load() == 0);
+}
