@@ -487,8 +487,11 @@ class BasicEkf {
     if (!next.allFinite()) fail(ErrorCode::kNonFinite, "Ekf::predict: motion model produced a non-finite state");
 
     const RobotCovariance GQGt = G * noise.covariance() * G.transpose();
+    // With P positive semi-definite, |(F P_rm)_ij| <= sqrt((F P_rr F^T)_ii P_jj) (Cauchy-
+    // Schwarz), and F P_rr F^T <= P_rr_next: a finite new robot block keeps the cross rows
+    // finite too.
     RobotCovariance P_rr_next = F * robotCovariance() * F.transpose() + GQGt;
-    if (!P_rr_next.allFinite() || !robotRowsStayFinite(F))
+    if (!P_rr_next.allFinite())
       fail(ErrorCode::kNonFinite,
            "Ekf::predict: the predicted covariance is not finite (the noise or the motion's Jacobian overflows it)");
     // From here on nothing can fail.
@@ -748,13 +751,13 @@ class BasicEkf {
     const Mat<L, kRobotDim> J_P_rr = J_l_x * P_rr;
     Mat<L, L> P_ll = J_P_rr * J_l_x.transpose() + J_l_z * noise.covariance() * J_l_z.transpose();
     P_ll = (0.5 * (P_ll + P_ll.transpose())).eval();
-    if (!P_ll.allFinite() || !J_P_rr.allFinite() || !robotRowsStayFinite(J_l_x))
-      fail(ErrorCode::kNonFinite, std::string(InverseModel::kName) + ": the new landmark's covariance is not finite "
-                                                                     "(its Jacobians or noise overflow it)");
     // The new block's rows against the landmarks, J_l_x P_rm, computed before anything is
     // written: the product (and its buffer) may allocate for a large state.
     const int m = n_ - kRobotDim;
     const Eigen::Matrix<double, L, Eigen::Dynamic> J_P_rm = J_l_x * cov_.block(kRobotDim, 0, m, kRobotDim).transpose();
+    if (!P_ll.allFinite() || !J_P_rr.allFinite() || !J_P_rm.allFinite())
+      fail(ErrorCode::kNonFinite, std::string(InverseModel::kName) + ": the new landmark's covariance is not finite "
+                                                                     "(its Jacobians or noise overflow it)");
     // Everything that may allocate comes first, and the filter is unchanged if it throws: the
     // slot list's room (doubling), the storage (which only grows), then the id's entry in the
     // index (the last thing that can fail).
@@ -1470,19 +1473,6 @@ class BasicEkf {
       col.noalias() += dNt.middleCols(j, n_ - j).transpose() * Bt.col(j);
       col.noalias() += Bt.middleCols(j, n_ - j).transpose() * dNt.col(j);
     }
-  }
-
-  /// True when A P_rm stays finite for every landmark block (A: rows x kRobotDim): by
-  /// Cauchy-Schwarz |P_mr(i, j)| <= sqrt(P_ii P_jj), so each entry is at most the largest row
-  /// sum of |A| times sqrt(max P_mm diagonal * max P_rr diagonal). O(n) (the diagonal only).
-  template <int Rows>
-  bool robotRowsStayFinite(const Mat<Rows, kRobotDim>& A) const {
-    if (n_ == kRobotDim) return true;
-    double landmark_diag = 0.0;
-    for (int i = kRobotDim; i < n_; ++i) landmark_diag = std::max(landmark_diag, std::abs(cov_(i, i)));
-    const double robot_diag = cov_.diagonal().template head<kRobotDim>().cwiseAbs().maxCoeff();
-    const double bound = A.cwiseAbs().rowwise().sum().maxCoeff() * std::sqrt(landmark_diag) * std::sqrt(robot_diag);
-    return std::isfinite(bound) && bound < 0.5 * std::numeric_limits<double>::max();
   }
 
   /// P_rr <- P_rr_next, P_mr <- P_mr F^T: the robot block and its cross-covariances through a
