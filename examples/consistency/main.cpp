@@ -260,6 +260,17 @@ json monocularSuite(const std::vector<MonocularConfig>& configs, Scenarios scena
   return suite;
 }
 
+/// The pipeline's default options with linearization `point`. The observability-constrained
+/// filter keeps the map's position and scale uncertain, so its life cycle judges landmarks
+/// given the camera (TreeSlamOptions::conversion_given_camera).
+forest_slam::TreeSlamOptions pipelineOptions(const Pipeline& p, LinearizationPoint point) {
+  forest_slam::TreeSlamOptions o;
+  o.pipeline = p.pipeline;
+  o.linearization = point;
+  o.conversion_given_camera = point == LinearizationPoint::kObservabilityConstrained;
+  return o;
+}
+
 /// pipeline/mode for every pipeline and monocular mode, the filter's noise at its default; and
 /// pipeline/camera_velocity/mode, the same filter with the velocity in the camera frame
 /// (ConstantVelocity3D::VelocityFrame::kCamera) at the same noise, for the textbook and the
@@ -268,24 +279,13 @@ std::vector<MonocularConfig> monocularModes() {
   std::vector<MonocularConfig> out;
   for (const Pipeline& p : kPipelines) {
     for (const Mode& m : kMonocularModes) {
-      forest_slam::TreeSlamOptions o;
-      o.pipeline = p.pipeline;
-      o.linearization = m.point;
-      // The observability-constrained filter keeps the map's position and scale uncertain, so
-      // its life cycle judges landmarks given the camera (TreeSlamOptions).
-      o.conversion_given_camera = m.point == LinearizationPoint::kObservabilityConstrained;
-      out.push_back({std::string(p.name) + "/" + m.name, o});
+      out.push_back({std::string(p.name) + "/" + m.name, pipelineOptions(p, m.point)});
     }
     for (const Mode& m : kMonocularModes) {
       if (m.point != LinearizationPoint::kCurrentEstimate && m.point != LinearizationPoint::kObservabilityConstrained &&
           m.point != LinearizationPoint::kIdeal)
         continue;
-      forest_slam::TreeSlamOptions o;
-      o.pipeline = p.pipeline;
-      o.linearization = m.point;
-      // The observability-constrained filter keeps the map's position and scale uncertain, so
-      // its life cycle judges landmarks given the camera (TreeSlamOptions).
-      o.conversion_given_camera = m.point == LinearizationPoint::kObservabilityConstrained;
+      forest_slam::TreeSlamOptions o = pipelineOptions(p, m.point);
       o.velocity_frame = sylva::ConstantVelocity3D::VelocityFrame::kCamera;
       out.push_back({std::string(p.name) + "/camera_velocity/" + m.name, o});
     }
@@ -304,9 +304,7 @@ std::vector<MonocularConfig> monocularFactors(double raised_accel) {
         for (const bool gate : {true, false})
           for (const bool unbiased : {false, true})
             for (const bool raised : {false, true}) {
-              forest_slam::TreeSlamOptions o;
-              o.pipeline = p.pipeline;
-              o.linearization = point;
+              forest_slam::TreeSlamOptions o = pipelineOptions(p, point);
               o.pixel_sigma_px = true_noise ? 1.0 : defaults.pixel_sigma_px;
               o.gate_probability = gate ? defaults.gate_probability : 0.0;
               o.unbiased_point_uv = unbiased;
@@ -332,9 +330,7 @@ std::vector<MonocularConfig> monocularMotion(const std::vector<double>& accels) 
     for (const LinearizationPoint point : {LinearizationPoint::kCurrentEstimate, LinearizationPoint::kIdeal})
       for (const Frame frame : {Frame::kWorld, Frame::kCamera})
         for (const double accel : accels) {
-          forest_slam::TreeSlamOptions o;
-          o.pipeline = p.pipeline;
-          o.linearization = point;
+          forest_slam::TreeSlamOptions o = pipelineOptions(p, point);
           o.velocity_frame = frame;
           o.linear_accel_sigma = accel;
           std::ostringstream key;
@@ -352,10 +348,7 @@ std::vector<MonocularConfig> monocularGauge() {
   std::vector<MonocularConfig> out;
   for (const Pipeline& p : kPipelines)
     for (const sylva::GaugeInverse inverse : {sylva::GaugeInverse::kRobot, sylva::GaugeInverse::kWholeState}) {
-      forest_slam::TreeSlamOptions o;
-      o.pipeline = p.pipeline;
-      o.linearization = LinearizationPoint::kObservabilityConstrained;
-      o.conversion_given_camera = true;
+      forest_slam::TreeSlamOptions o = pipelineOptions(p, LinearizationPoint::kObservabilityConstrained);
       o.velocity_frame = sylva::ConstantVelocity3D::VelocityFrame::kCamera;
       o.gauge_inverse = inverse;
       out.push_back({std::string(p.name) + (inverse == sylva::GaugeInverse::kRobot ? "/robot" : "/whole_state"), o});
@@ -372,10 +365,7 @@ std::vector<MonocularConfig> monocularManifold() {
   for (const Pipeline& p : kPipelines)
     for (const LinearizationPoint point : {LinearizationPoint::kCurrentEstimate, LinearizationPoint::kObservabilityConstrained})
       for (const bool manifold : {false, true}) {
-        forest_slam::TreeSlamOptions o;
-        o.pipeline = p.pipeline;
-        o.linearization = point;
-        o.conversion_given_camera = point == LinearizationPoint::kObservabilityConstrained;
+        forest_slam::TreeSlamOptions o = pipelineOptions(p, point);
         o.velocity_frame = sylva::ConstantVelocity3D::VelocityFrame::kCamera;
         o.camera_on_manifold = manifold;
         out.push_back({std::string(p.name) + "/" +
@@ -393,9 +383,7 @@ std::vector<MonocularConfig> monocularTuning(const std::vector<double>& accels) 
   for (const Pipeline& p : kPipelines)
     for (const LinearizationPoint point : {LinearizationPoint::kCurrentEstimate, LinearizationPoint::kFirstEstimates})
       for (const double accel : accels) {
-        forest_slam::TreeSlamOptions o;
-        o.pipeline = p.pipeline;
-        o.linearization = point;
+        forest_slam::TreeSlamOptions o = pipelineOptions(p, point);
         o.linear_accel_sigma = accel;
         std::ostringstream key;
         key << p.name << "/" << (point == LinearizationPoint::kFirstEstimates ? "first_estimates" : "textbook")

@@ -38,6 +38,7 @@ void onEigenAssert(const char* what) {
 #include <sylva/sylva.hpp>
 
 #include "copy_init.hpp"
+#include "filter/monocular_rig.hpp"
 #include "filter_snapshot.hpp"
 #include "sylva_catch.hpp"
 
@@ -147,19 +148,17 @@ TEST_CASE("fault injection: every form of update leaves the filter as it was whe
 
 TEST_CASE("fault injection: the monocular filter's updates and reparametrizations", "[filter][faults]") {
   using Mono = Ekf<OnManifold<ConstantVelocity3D>, InverseDepth, Point3, TreeXYZR>;
-  const PinholeCamera camera{500.0, 500.0, 320.0, 240.0, 640, 480};
-  // Camera 1.5 m above the ground looking along world +x: camera x = -y_W, y = -z_W, z = x_W.
-  Vec<13> x0 = Vec<13>::Zero();
-  x0.head<3>() = Vec<3>(0.0, 0.0, 1.5);
-  x0.segment<4>(3) = Vec<4>(0.5, -0.5, 0.5, -0.5);
-  x0.segment<3>(7) = Vec<3>(1.0, 0.0, 0.0);
+  const sylva_test::MonocularRig rig;
+  // (References, not a structured binding: C++17 lambdas cannot capture those.)
+  const auto& camera = rig.camera;
+  const auto& x0 = rig.x0;
+  const auto& id_model = rig.id_model;
+  const auto& xyz = rig.xyz_model;
+  const auto& width = rig.width_model;
+  const auto& init = rig.init;
+  const auto& pixel = rig.pixel;
+  const auto& pixel_width = rig.pixel_width;
   Mono ekf(x0, Mat<12, 12>::Identity() * 1e-4);
-  const PinholePoint<Point3> xyz(camera);
-  const PinholePoint<InverseDepth> id_model(camera);
-  const TreeWidth width(camera);
-  const InverseDepthInitialization init(camera);
-  const auto pixel = Gaussian<2>::sigmas(Vec<2>(1.0, 1.0));
-  const auto pixel_width = Gaussian<3>::sigmas(Vec<3>(1.0, 1.0, 1.0));
   std::vector<Vec<4>> trees;
   for (int i = 0; i < 6; ++i) trees.emplace_back(6.0 + 0.8 * i, -2.0 + 0.7 * i, 0.0, 0.2 + 0.01 * i);
   for (int i = 0; i < 6; ++i) ekf.add(i, init, init.measurement(xyz(x0, Vec<3>(trees[i].head<3>()))), init.noise(pixel));

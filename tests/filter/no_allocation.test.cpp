@@ -22,6 +22,7 @@ inline void countEigenAssertFailure(const char* what) {
 
 #include "sylva_catch.hpp"
 
+#include "filter/monocular_rig.hpp"
 #include "replaced_operator_new.hpp"
 
 using sylva_test::g_allocations;
@@ -66,20 +67,18 @@ TEMPLATE_TEST_CASE("predict and a single update do not allocate in steady state"
 TEMPLATE_TEST_CASE("the monocular tree filter's predict and updates do not allocate in steady state", "[filter][allocation]",
                    ConstantVelocity3D, OnManifold<ConstantVelocity3D>) {
   using Filter = Ekf<TestType, InverseDepth, Point3, TreeXYZR>;
-  const PinholeCamera camera{500.0, 500.0, 320.0, 240.0, 640, 480};
-  // Camera 1.5 m above the ground looking along world +x: camera x = -y_W, y = -z_W, z = x_W.
-  Vec<13> x0 = Vec<13>::Zero();
-  x0.head<3>() = Vec<3>(0.0, 0.0, 1.5);
-  x0.segment<4>(3) = Vec<4>(0.5, -0.5, 0.5, -0.5);
-  x0.segment<3>(7) = Vec<3>(1.0, 0.0, 0.0);
+  const sylva_test::MonocularRig rig;
+  // (References, not a structured binding: C++17 lambdas cannot capture those.)
+  const auto& camera = rig.camera;
+  const auto& x0 = rig.x0;
+  const auto& id_model = rig.id_model;
+  const auto& xyz_model = rig.xyz_model;
+  const auto& width_model = rig.width_model;
+  const auto& init = rig.init;
+  const auto& pixel = rig.pixel;
+  const auto& pixel_width = rig.pixel_width;
   const Mat<Filter::kRobotDim, Filter::kRobotDim> P0 = Mat<Filter::kRobotDim, Filter::kRobotDim>::Identity() * 1e-4;
   Filter ekf(x0, P0);
-  const PinholePoint<InverseDepth> id_model(camera);
-  const PinholePoint<Point3> xyz_model(camera);
-  const TreeWidth width_model(camera);
-  const InverseDepthInitialization init(camera);
-  const auto pixel = Gaussian<2>::sigmas(Vec<2>(1.0, 1.0));
-  const auto pixel_width = Gaussian<3>::sigmas(Vec<3>(1.0, 1.0, 1.0));
   // 30 trees 6-15 m ahead: ids 0-9 stay inverse depth, 10-19 become XYZ, 20-29 XYZ-R.
   std::vector<Vec<4>> trees;
   for (int i = 0; i < 30; ++i) trees.emplace_back(6.0 + 0.3 * i, -3.0 + 0.2 * i, 0.0, 0.2 + 0.005 * i);
