@@ -82,7 +82,7 @@ void timeUpdate(benchmark::State& state, const Model& model) {
   Vec<Model::kDim> delta = Vec<Model::kDim>::Constant(0.3);
   const auto noise = sylva::Gaussian<Model::kDim>::sigmas(Vec<Model::kDim>::Constant(1.0));
   for (auto _ : state) {
-    const Vec<Model::kDim> z = model(ekf.robotMean(), ekf.template landmarkMean<Landmark>(id)) + delta;
+    const Vec<Model::kDim> z = model(sylva::ConstantVelocity3D::pose(ekf.robotMean()), ekf.template landmarkMean<Landmark>(id)) + delta;
     ekf.update(model, id, z, noise);
     delta = -delta;
     benchmark::ClobberMemory();

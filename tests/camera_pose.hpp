@@ -1,5 +1,6 @@
 #pragma once
-// Test helper: a ConstantVelocity3D camera state placed by where it stands and what it looks at.
+// Test helpers: a camera pose (Pose3D) or ConstantVelocity3D state placed by where it stands and
+// what it looks at.
 #include <cmath>
 
 #include <Eigen/Geometry>
@@ -33,6 +34,14 @@ inline sylva::Vec<13> lookAt(const sylva::Vec<3>& position,
   Vec<13> x;
   x << position, scale * Vec<4>(q.w(), q.x(), q.y(), q.z()), velocities;
   return x;
+}
+
+/// The pose [r_WC, q_WC] (Pose3D, what the camera models see) of lookAt's camera.
+inline sylva::Vec<7> lookAtPose(const sylva::Vec<3>& position,
+                                const sylva::Vec<3>& target,
+                                double roll_rad = 0.0,
+                                double scale = 1.0) {
+  return lookAt(position, target, roll_rad, scale).head<7>();
 }
 
 }  // namespace sylva_test

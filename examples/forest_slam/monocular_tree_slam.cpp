@@ -83,7 +83,7 @@ FrameReport BasicMonocularTreeSlam<Camera>::processFrame(double dt,
     if (options_.unbiased_point_uv) {
       // The frame's noise on the projection of the true base centre.
       const Vec<3>& base = (*truth->trees)[static_cast<std::size_t>(o.id)].base;
-      uv += xyz_point_(truth->camera, base) - o.z_true.head<2>();
+      uv += xyz_point_(sylva::ConstantVelocity3D::pose(truth->camera), base) - o.z_true.head<2>();
     }
     (ekf_.contains(o.id) ? mapped_ : fresh_).push_back({o.id, o.z, uv});
   }

@@ -161,20 +161,20 @@ TEST_CASE("fault injection: the monocular filter's updates and reparametrization
   Mono ekf(x0, Mat<12, 12>::Identity() * 1e-4);
   std::vector<Vec<4>> trees;
   for (int i = 0; i < 6; ++i) trees.emplace_back(6.0 + 0.8 * i, -2.0 + 0.7 * i, 0.0, 0.2 + 0.01 * i);
-  for (int i = 0; i < 6; ++i) ekf.add(i, init, init.measurement(xyz(x0, Vec<3>(trees[i].head<3>()))), init.noise(pixel));
+  for (int i = 0; i < 6; ++i) ekf.add(i, init, init.measurement(xyz(ConstantVelocity3D::pose(x0), Vec<3>(trees[i].head<3>()))), init.noise(pixel));
   ekf.reparametrize(4, InverseDepthToPoint3<ConstantVelocity3D>{});
   everyAllocationFails<Mono>(ekf, [&](Mono& f) { f.reparametrize(1, InverseDepthToPoint3<ConstantVelocity3D>{}); },
                              [](const Mono& f) { return f.holds<InverseDepth>(1); });
-  everyAllocationFails<Mono>(ekf, [&](Mono& f) { f.reparametrize(4, InverseTreeWidth(camera), width(x0, trees[4]), pixel_width); },
+  everyAllocationFails<Mono>(ekf, [&](Mono& f) { f.reparametrize(4, InverseTreeWidth(camera), width(ConstantVelocity3D::pose(x0), trees[4]), pixel_width); },
                              [](const Mono& f) { return f.holds<Point3>(4); });
   for (const LinearizationPoint point : {LinearizationPoint::kCurrentEstimate, LinearizationPoint::kObservabilityConstrained}) {
     Mono moded = ekf;
     moded.setLinearizationPoint(point);
     everyAllocationFails<Mono>(moded, [&](Mono& f) {
-      f.update(id_model, 2, id_model(f.robotMean(), f.landmarkMean<InverseDepth>(2)) + Vec<2>(0.4, -0.3), pixel);
+      f.update(id_model, 2, id_model(ConstantVelocity3D::pose(f.robotMean()), f.landmarkMean<InverseDepth>(2)) + Vec<2>(0.4, -0.3), pixel);
     });
     everyAllocationFails<Mono>(moded, [&](Mono& f) {
-      f.update(xyz, 4, xyz(f.robotMean(), f.landmarkMean<Point3>(4)) + Vec<2>(-0.3, 0.2), pixel);
+      f.update(xyz, 4, xyz(ConstantVelocity3D::pose(f.robotMean()), f.landmarkMean<Point3>(4)) + Vec<2>(-0.3, 0.2), pixel);
     });
   }
   CHECK(g_other_eigen_asserts.load() == 0);

@@ -93,10 +93,10 @@ struct DenseManifoldEkf {
   }
 
   void add(const InverseDepthInitialization& init, const Vec<3>& z, const Gaussian<3>& noise) {
-    const Vec<6> l = init(robot, z);
+    const Vec<6> l = init(ConstantVelocity3D::pose(robot), z);
     const Mat<6, 12> J_x =
-        numericJacobian<6, 12>([&](const Vec<12>& d) { return init(Camera::plus(robot, d), z); }, Vec<12>(Vec<12>::Zero()));
-    const Mat<6, 3> J_z = numericJacobian<6, 3>([&](const Vec<3>& y) { return init(robot, y); }, z);
+        numericJacobian<6, 12>([&](const Vec<12>& d) { return init(ConstantVelocity3D::pose(Camera::plus(robot, d)), z); }, Vec<12>(Vec<12>::Zero()));
+    const Mat<6, 3> J_z = numericJacobian<6, 3>([&](const Vec<3>& y) { return init(ConstantVelocity3D::pose(robot), y); }, z);
     const int n = size();
     Eigen::MatrixXd J = Eigen::MatrixXd::Zero(n + 6, n + 3);
     J.topLeftCorner(n, n).setIdentity();
@@ -114,7 +114,7 @@ struct DenseManifoldEkf {
     const int o = 12 + 6 * index;
     const Vec<6> l = landmarks.segment<6>(6 * index);
     const auto h = [&](const Vec<18>& d) {
-      return model(Camera::plus(robot, Vec<12>(d.head<12>())), Vec<6>(l + d.tail<6>()));
+      return model(ConstantVelocity3D::pose(Camera::plus(robot, Vec<12>(d.head<12>()))), Vec<6>(l + d.tail<6>()));
     };
     const Mat<2, 18> H_local = numericJacobian<2, 18>(h, Vec<18>(Vec<18>::Zero()));
     Eigen::MatrixXd H = Eigen::MatrixXd::Zero(2, size());
@@ -122,7 +122,7 @@ struct DenseManifoldEkf {
     H.middleCols<6>(o) = H_local.rightCols<6>();
     const Eigen::MatrixXd S = H * P * H.transpose() + noise.covariance();
     const Eigen::MatrixXd K = P * H.transpose() * S.inverse();
-    const Eigen::VectorXd delta = K * (z - model(robot, l));
+    const Eigen::VectorXd delta = K * (z - model(ConstantVelocity3D::pose(robot), l));
     robot = Camera::plus(robot, Vec<12>(delta.head<12>()));
     landmarks += delta.tail(size() - 12);
     P = ((Eigen::MatrixXd::Identity(size(), size()) - K * H) * P).eval();
@@ -215,7 +215,7 @@ TEST_CASE("manifold robot: the filter equals a dense tangent-space EKF written h
       ref.predict(0.1, accel);
       for (int j = 0; j < 3; ++j) {
         // The pixel the landmark predicts, moved by a few pixels: an informative update.
-        const Vec<2> z = model(ekf.robotMean(), ekf.landmarkMean<InverseDepth>(j)) + Vec<2>(1.5 * std::sin(k + j), -2.0 * std::cos(k * j));
+        const Vec<2> z = model(ConstantVelocity3D::pose(ekf.robotMean()), ekf.landmarkMean<InverseDepth>(j)) + Vec<2>(1.5 * std::sin(k + j), -2.0 * std::cos(k * j));
         ekf.update(model, j, z, pixel);
         ref.update(model, j, z, pixel);
       }

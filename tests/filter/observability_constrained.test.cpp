@@ -159,7 +159,7 @@ TEST_CASE("observability constrained: every camera model is blind to the gauge, 
     Mat<3, 13> H3x;
     {
       Mat<2, 3> H_l;
-      xyz(x, base, H2x, H_l);
+      detail::evaluateOn<ConstantVelocity3D>(xyz, x, base, H2x, H_l);
       CHECK((H2x * N_x + H_l * Point3::gaugeDirections(base)).cwiseAbs().maxCoeff() < 1e-9 * H_l.norm() * base.norm());
     }
     {
@@ -169,13 +169,13 @@ TEST_CASE("observability constrained: every camera model is blind to the gauge, 
       Vec<6> l;
       l << anchor, rayAngles(ray.normalized()), 1.0 / ray.norm();
       Mat<2, 6> H_l;
-      id(x, l, H2x, H_l);
+      detail::evaluateOn<ConstantVelocity3D>(id, x, l, H2x, H_l);
       CHECK((H2x * N_x + H_l * InverseDepth::gaugeDirections(l)).cwiseAbs().maxCoeff() < 1e-9 * H_l.norm() * anchor.norm());
     }
     {
       const Vec<4> tree(base.x(), base.y(), base.z(), 0.2);
       Mat<3, 4> H_l;
-      width(x, tree, H3x, H_l);
+      detail::evaluateOn<ConstantVelocity3D>(width, x, tree, H3x, H_l);
       CHECK((H3x * N_x + H_l * TreeXYZR::gaugeDirections(tree)).cwiseAbs().maxCoeff() < 1e-9 * H_l.norm() * base.norm());
       // Tilting the world about the horizontal axis across the view is no part of the gauge: a
       // vertical trunk's width seen by a pitched camera changes with it. (For a camera whose
@@ -195,7 +195,7 @@ TEST_CASE("observability constrained: every camera model is blind to the gauge, 
       Vec<7> l;
       l << anchor, rayAngles(ray.normalized()), 1.0 / ray.norm(), 0.2 / ray.norm();
       Mat<3, 7> H_l;
-      detail::evaluate(idr_width, x, l, JacobianRef<3, 13>(H3x), JacobianRef<3, 7>(H_l));
+      detail::evaluateOn<ConstantVelocity3D>(idr_width, x, l, H3x, H_l);
       CHECK((H3x * N_x + H_l * InverseDepthRadius::gaugeDirections(l)).cwiseAbs().maxCoeff() < 1e-8 * H_l.norm() * anchor.norm());
     }
   }

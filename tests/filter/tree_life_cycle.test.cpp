@@ -117,7 +117,7 @@ TEST_CASE("XYZ becomes XYZ-R once its position is certain enough", "[life_cycle]
           inverseDepthNoise(0.002));
   const TreeLifeCycle<> life(kCamera);
   REQUIRE(life.convertInverseDepth(ekf) == std::vector<Id>{1});
-  const Vec<3> z = TreeWidth(kCamera)(camera, truth);
+  const Vec<3> z = TreeWidth(kCamera)(ConstantVelocity3D::pose(camera), truth);
   const Gaussian<3> noise = Gaussian<3>::sigmas(Vec<3>(1.0, 1.0, 1.0));
 
   // Depth sigma ~ 0.002 / rho^2 ~ 0.2 m: not yet.

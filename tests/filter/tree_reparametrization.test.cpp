@@ -78,7 +78,7 @@ struct Scene {
 
 TEST_CASE("XYZ -> XYZ-R with a width measurement equals the dense reference", "[filter][tree]") {
   Scene s;
-  const Vec<3> z = TreeWidth(kCamera)(s.camera, s.truth);
+  const Vec<3> z = TreeWidth(kCamera)(ConstantVelocity3D::pose(s.camera), s.truth);
   const Gaussian<3> noise = Gaussian<3>::sigmas(Vec<3>(1.0, 1.0, 0.5));
   const int offset = s.ekf.slot(2).offset;
   s.ekf.reparametrize(2, InverseTreeWidth(kCamera), z, noise);
@@ -91,7 +91,7 @@ TEST_CASE("XYZ -> XYZ-R with a width measurement equals the dense reference", "[
   const double var_r = s.ekf.landmarkCovariance<TreeXYZR>(2)(3, 3);
   Mat<4, 3> J_z;
   const InverseTreeWidth inverse(kCamera);
-  inverse(s.camera, s.truth.head<3>(), z, {}, {}, J_z);
+  inverse(ConstantVelocity3D::pose(s.camera), s.truth.head<3>(), z, {}, {}, J_z);
   CHECK(var_r > J_z(3, 2) * J_z(3, 2) * 0.25);
 
   // TreeWidth updates on the new block agree with the dense reference too.
@@ -108,7 +108,7 @@ TEST_CASE("XYZ -> XYZ-R with a width measurement equals the dense reference", "[
 
 TEST_CASE("rejected tree reparametrizations and updates leave the filter unchanged", "[filter][tree][errors]") {
   Scene s;
-  const Vec<3> z = TreeWidth(kCamera)(s.camera, s.truth);
+  const Vec<3> z = TreeWidth(kCamera)(ConstantVelocity3D::pose(s.camera), s.truth);
   const Gaussian<3> noise = Gaussian<3>::sigmas(Vec<3>(1.0, 1.0, 0.5));
   const InverseTreeWidth inverse(kCamera);
   const Eigen::VectorXd mean0 = s.ekf.mean();

@@ -23,7 +23,7 @@
 namespace unity_measurements_inverse_tree_width {
 
 using namespace sylva;
-using sylva_test::lookAt;
+using sylva_test::lookAtPose;
 using sylva::sim::Rng;
 
 namespace {
@@ -31,7 +31,7 @@ namespace {
 const PinholeCamera kCamera{500.0, 480.0, 320.0, 240.0, 640, 480};
 
 struct Config {
-  Vec<13> camera;
+  Vec<7> camera;
   Vec<4> tree;
   Vec<3> z;
 };
@@ -46,7 +46,7 @@ bool randomConfig(Rng& rng, double height_m, Config& out) {
   const Vec<3> position = tree.head<3>() + Vec<3>(range * std::cos(bearing), range * std::sin(bearing), height_m);
   // Aim near the tree so it lands anywhere in the image.
   const Vec<3> target = tree.head<3>() + Vec<3>(rng.uniform(-1.5, 1.5), rng.uniform(-1.5, 1.5), rng.uniform(-1.0, 1.0));
-  const Vec<13> camera = lookAt(position, target, rng.uniform(-0.5, 0.5), rng.uniform(0.5, 2.0));
+  const Vec<7> camera = lookAtPose(position, target, rng.uniform(-0.5, 0.5), rng.uniform(0.5, 2.0));
   try {
     out = Config{camera, tree, TreeWidth(kCamera)(camera, tree)};
   } catch (const Error&) {
@@ -93,7 +93,7 @@ TEST_CASE("InverseTreeWidth handles a camera looking straight down", "[inverse_t
   // n = (0, 0, -1) in the camera frame: the quadratic's leading coefficient vanishes.
   const Vec<4> tree(1.0, 2.0, 0.0, 0.3);
   for (const Vec<3>& offset : {Vec<3>(-1.2, 0.3, 4.0), Vec<3>(0.7, -0.4, 4.0)}) {
-    const Vec<13> camera = lookAt(tree.head<3>() + offset, tree.head<3>() + Vec<3>(offset.x(), offset.y(), 0.0));
+    const Vec<7> camera = lookAtPose(tree.head<3>() + offset, tree.head<3>() + Vec<3>(offset.x(), offset.y(), 0.0));
     const Vec<3> z = TreeWidth(kCamera)(camera, tree);
     const Vec<4> l = InverseTreeWidth(kCamera)(camera, tree.head<3>(), z);
     CHECK(l[3] == Approx(0.3).epsilon(1e-12));
@@ -131,24 +131,24 @@ TEST_CASE("InverseTreeWidth Jacobians match central differences", "[inverse_tree
 }
 
 TEST_CASE("InverseTreeWidth's implicit Jacobian equals autodiff of the closed form", "[inverse_tree_width][jacobian]") {
-  using Dual = Eigen::AutoDiffScalar<Vec<17>>;
+  using Dual = Eigen::AutoDiffScalar<Vec<11>>;
   const InverseTreeWidth inverse(kCamera);
   Rng rng(11);
   int tested = 0;
   for (int i = 0; i < 200 && tested < 50; ++i) {
     Config c;
     if (!randomConfig(rng, rng.uniform(0.2, 3.0), c)) continue;
-    Vec<13, Dual> x;
+    Vec<7, Dual> x;
     Vec<3, Dual> base;
-    for (int k = 0; k < 13; ++k) x[k] = Dual(c.camera[k], 17, k);
-    for (int k = 0; k < 3; ++k) base[k] = Dual(c.tree[k], 17, 13 + k);
-    const Dual w(c.z[2], 17, 16);
+    for (int k = 0; k < 7; ++k) x[k] = Dual(c.camera[k], 11, k);
+    for (int k = 0; k < 3; ++k) base[k] = Dual(c.tree[k], 11, 7 + k);
+    const Dual w(c.z[2], 11, 10);
     const Dual r = inverse.radius<Dual>(x, base, w);
-    Mat<4, 13> J_x;
+    Mat<4, 7> J_x;
     Mat<4, 3> J_l;
     Mat<4, 3> J_z;
     inverse(c.camera, c.tree.head<3>(), c.z, J_x, J_l, J_z);
-    const Vec<17> analytic = (Vec<17>() << J_x.row(3).transpose(), J_l.row(3).transpose(), J_z(3, 2)).finished();
+    const Vec<11> analytic = (Vec<11>() << J_x.row(3).transpose(), J_l.row(3).transpose(), J_z(3, 2)).finished();
     const double scale = std::max(1.0, r.derivatives().cwiseAbs().maxCoeff());
     CHECK((analytic - r.derivatives()).cwiseAbs().maxCoeff() / scale < 1e-8);
     CHECK(J_z(3, 0) == 0.0);
@@ -162,14 +162,14 @@ TEST_CASE("InverseTreeWidth rejects invalid and degenerate input with a reason",
   using sylva_test::throwsCode;
   const InverseTreeWidth inverse(kCamera);
   const Vec<4> tree(0.0, 0.0, 0.0, 0.3);
-  const Vec<13> camera = lookAt(Vec<3>(-6.0, 0.5, 1.5), Vec<3>(0.0, 0.0, 0.0));
+  const Vec<7> camera = lookAtPose(Vec<3>(-6.0, 0.5, 1.5), Vec<3>(0.0, 0.0, 0.0));
   const Vec<3> z = TreeWidth(kCamera)(camera, tree);
   const Vec<3> base = tree.head<3>();
 
   CHECK(throwsCode([&] { inverse(camera, base, Vec<3>(z[0], z[1], 0.0)); }, ErrorCode::kDegenerateGeometry));
   CHECK(throwsCode([&] { inverse(camera, base, Vec<3>(z[0], z[1], -3.0)); }, ErrorCode::kDegenerateGeometry));
   CHECK(throwsCode([&] { inverse(camera, base, Vec<3>(z[0], z[1], NAN)); }, ErrorCode::kNonFinite));
-  Vec<13> bad = camera;
+  Vec<7> bad = camera;
   bad[4] = INFINITY;
   CHECK(throwsCode([&] { inverse(bad, base, z); }, ErrorCode::kNonFinite));
   CHECK(throwsCode([&] { inverse(camera, Vec<3>(NAN, 0.0, 0.0), z); }, ErrorCode::kNonFinite));
@@ -177,7 +177,7 @@ TEST_CASE("InverseTreeWidth rejects invalid and degenerate input with a reason",
   bad.segment<4>(3).setZero();
   CHECK(throwsCode([&] { inverse(bad, base, z); }, ErrorCode::kDegenerateGeometry));
   // The tree behind the camera.
-  const Vec<13> away = lookAt(Vec<3>(-6.0, 0.5, 1.5), Vec<3>(-12.0, 1.0, 0.0));
+  const Vec<7> away = lookAtPose(Vec<3>(-6.0, 0.5, 1.5), Vec<3>(-12.0, 1.0, 0.0));
   CHECK(throwsCode([&] { inverse(away, base, z); }, ErrorCode::kDegenerateGeometry));
 }
 

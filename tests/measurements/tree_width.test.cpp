@@ -33,6 +33,7 @@ namespace unity_measurements_tree_width {
 
 using namespace sylva;
 using sylva_test::lookAt;
+using sylva_test::lookAtPose;
 
 namespace {
 
@@ -47,7 +48,7 @@ Vec<4> treeAt(double x, double y, double z, double r) { return Vec<4>(x, y, z, r
 struct CircleImage {
   Vec<3> centre, a, b;
 
-  CircleImage(const Vec<13>& camera, const Vec<3>& c, double r) {
+  CircleImage(const Vec<7>& camera, const Vec<3>& c, double r) {
     const Mat<3, 3> Rt = rotationMatrix<double>(Vec<4>(camera.segment<4>(3))).transpose();
     centre = Rt * (c - camera.head<3>());
     a = r * Rt.col(0);
@@ -148,7 +149,7 @@ TEST_CASE("PinholeCamera validates its intrinsics and projects", "[measurements]
 TEST_CASE("TreeXYZR and TreeWidth declare their dimensions", "[measurements][tree_width]") {
   STATIC_REQUIRE(TreeXYZR::kDim == 4);
   STATIC_REQUIRE(TreeWidth::kDim == 3);
-  STATIC_REQUIRE(TreeWidth::Robot::kDim == 13);
+  STATIC_REQUIRE(TreeWidth::Robot::kDim == 7);
   STATIC_REQUIRE(TreeWidth::Landmark::kDim == 4);
   CHECK(std::string(TreeXYZR::kName) == "TreeXYZR");
   CHECK(std::string(TreeWidth::kName) == "TreeWidth");
@@ -162,7 +163,7 @@ TEST_CASE("TreeWidth: a tree straight ahead at eye level gives the closed-form w
   const TreeWidth model(kCamera);
   const double d = 5.0;
   const double r = 0.4;
-  const Vec<3> z = model(lookAt(Vec<3>(0.0, 0.0, 1.0), Vec<3>(d, 0.0, 1.0)), treeAt(d, 0, 1, r));
+  const Vec<3> z = model(lookAtPose(Vec<3>(0.0, 0.0, 1.0), Vec<3>(d, 0.0, 1.0)), treeAt(d, 0, 1, r));
   CHECK(z[0] == Approx(kCamera.cx).margin(1e-9));
   CHECK(z[1] == Approx(kCamera.cy).margin(1e-9));
   CHECK(z[2] == Approx(2.0 * kCamera.fx * std::tan(std::asin(r / d))).epsilon(1e-12));
@@ -193,7 +194,7 @@ TEST_CASE("TreeWidth matches a brute-force projection of the base circle",
         0.4 * (aim - t).norm() *
         Vec<3>(rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0));
     const double roll = trial % 4 == 0 ? rng.uniform(-kPiD, kPiD) : rng.uniform(-0.3, 0.3);
-    const Vec<13> x = lookAt(t, aim + off, roll);
+    const Vec<7> x = lookAtPose(t, aim + off, roll);
 
     const BruteForce b = bruteForce(CircleImage(x, c, r));
     // Keep configurations with the whole circle at least 5 cm in front of the camera; nearer
@@ -247,7 +248,7 @@ TEST_CASE("TreeWidth matches a brute-force projection of the base circle",
 namespace {
 struct Geometry {
   const char* name;
-  Vec<13> camera;
+  Vec<7> camera;
   Vec<4> tree;
   double tolerance = 1e-6;
 };
@@ -255,38 +256,38 @@ struct Geometry {
 std::vector<Geometry> jacobianGeometries() {
   const Vec<3> eye(1.0, -2.0, 1.6);
   return {
-      {"ordinary", lookAt(eye, Vec<3>(6.0, 1.0, 0.5)), treeAt(6.0, 1.0, 0.2, 0.3)},
+      {"ordinary", lookAtPose(eye, Vec<3>(6.0, 1.0, 0.5)), treeAt(6.0, 1.0, 0.2, 0.3)},
       {"camera 1 mm above the base plane",
-       lookAt(Vec<3>(0.0, 0.0, 0.201), Vec<3>(5.0, 0.5, 0.3)),
+       lookAtPose(Vec<3>(0.0, 0.0, 0.201), Vec<3>(5.0, 0.5, 0.3)),
        treeAt(5.0, 0.5, 0.2, 0.25)},
       {"camera 1 mm below the base plane",
-       lookAt(Vec<3>(0.0, 0.0, 0.199), Vec<3>(5.0, 0.5, 0.3)),
+       lookAtPose(Vec<3>(0.0, 0.0, 0.199), Vec<3>(5.0, 0.5, 0.3)),
        treeAt(5.0, 0.5, 0.2, 0.25)},
       {"camera exactly on the base plane",
-       lookAt(Vec<3>(0.0, 0.0, 0.2), Vec<3>(5.0, 0.5, 0.6)),
+       lookAtPose(Vec<3>(0.0, 0.0, 0.2), Vec<3>(5.0, 0.5, 0.6)),
        treeAt(5.0, 0.5, 0.2, 0.25)},
       {"tree near the image border",
-       lookAt(eye, Vec<3>(8.0, 4.4, 0.8)),
+       lookAtPose(eye, Vec<3>(8.0, 4.4, 0.8)),
        treeAt(6.0, 2.8, 0.0, 0.3)},
-      {"large radius, close", lookAt(eye, Vec<3>(4.0, -2.0, 0.5)), treeAt(4.0, -2.0, 0.0, 2.0)},
-      {"small radius, far", lookAt(eye, Vec<3>(40.0, 10.0, 0.0)), treeAt(40.0, 10.0, 0.0, 0.01)},
+      {"large radius, close", lookAtPose(eye, Vec<3>(4.0, -2.0, 0.5)), treeAt(4.0, -2.0, 0.0, 2.0)},
+      {"small radius, far", lookAtPose(eye, Vec<3>(40.0, 10.0, 0.0)), treeAt(40.0, 10.0, 0.0, 0.01)},
       {"camera rolled 90 deg about the optical axis",
-       lookAt(eye, Vec<3>(6.0, 1.0, 0.5), kPiD / 2),
+       lookAtPose(eye, Vec<3>(6.0, 1.0, 0.5), kPiD / 2),
        treeAt(6.0, 1.0, 0.2, 0.3)},
       {"camera rolled 90 deg, looking down",
-       lookAt(eye, Vec<3>(3.0, -1.0, -1.0), -kPiD / 2),
+       lookAtPose(eye, Vec<3>(3.0, -1.0, -1.0), -kPiD / 2),
        treeAt(3.5, -1.0, 0.0, 0.3)},
       {"looking straight down on the tree",
-       lookAt(Vec<3>(2.0, 0.0, 5.0), Vec<3>(2.0, 1e-3, 0.0)),
+       lookAtPose(Vec<3>(2.0, 0.0, 5.0), Vec<3>(2.0, 1e-3, 0.0)),
        treeAt(2.0, 1.0, 0.0, 0.4)},
       {"quaternion not unit (norm 1.7)",
-       lookAt(eye, Vec<3>(6.0, 1.0, 0.5), 0.4, 1.7),
+       lookAtPose(eye, Vec<3>(6.0, 1.0, 0.5), 0.4, 1.7),
        treeAt(6.0, 1.0, 0.2, 0.3)},
       {"quaternion not unit (norm 0.3)",
-       lookAt(eye, Vec<3>(6.0, 1.0, 0.5), -0.4, 0.3),
+       lookAtPose(eye, Vec<3>(6.0, 1.0, 0.5), -0.4, 0.3),
        treeAt(6.0, 1.0, 0.2, 0.3)},
       {"far from the origin",
-       lookAt(Vec<3>(500.0, -300.0, 20.0), Vec<3>(510.0, -295.0, 18.0)),
+       lookAtPose(Vec<3>(500.0, -300.0, 20.0), Vec<3>(510.0, -295.0, 18.0)),
        treeAt(510.0, -295.0, 18.0, 0.5)},
   };
 }
@@ -299,12 +300,10 @@ TEST_CASE("TreeWidth Jacobians match numerical differentiation", "[measurements]
     const auto report = testing::checkMeasurementJacobians(model, g.camera, g.tree, g.tolerance);
     INFO(report.message());
     CHECK(report.ok);
-    Mat<3, 13> J_z_x;
+    Mat<3, 7> J_z_x;
     Mat<3, 4> J_z_l;
     const Vec<3> z = model(g.camera, g.tree, J_z_x, J_z_l);
     CHECK(z == model.predict<double>(g.camera, g.tree));
-    // The velocities do not enter the measurement.
-    CHECK(J_z_x.middleCols<6>(7).isZero(0.0));
     // The model normalizes the quaternion, so scaling q changes nothing: J q = 0.
     CHECK((J_z_x.middleCols<4>(3) * g.camera.segment<4>(3)).norm() <=
           1e-9 * J_z_x.middleCols<4>(3).norm() * g.camera.segment<4>(3).norm());
@@ -317,7 +316,7 @@ TEST_CASE("TreeWidth analytic Jacobians equal automatic differentiation",
   const AutoDiff<TreeWidth> automatic(model);
   for (const Geometry& g : jacobianGeometries()) {
     INFO(g.name);
-    Mat<3, 13> J_z_x, A_z_x;
+    Mat<3, 7> J_z_x, A_z_x;
     Mat<3, 4> J_z_l, A_z_l;
     const Vec<3> z = model(g.camera, g.tree, J_z_x, J_z_l);
     const Vec<3> z_auto = automatic(g.camera, g.tree, A_z_x, A_z_l);
@@ -334,11 +333,11 @@ TEST_CASE("TreeWidth analytic Jacobians equal automatic differentiation",
 TEST_CASE("TreeWidth rejects degenerate geometry and bad input with a reason",
           "[measurements][tree_width][errors]") {
   const TreeWidth model(kCamera);
-  const Vec<13> camera = lookAt(Vec<3>(0.0, 0.0, 1.5), Vec<3>(5.0, 0.0, 0.5));
+  const Vec<7> camera = lookAtPose(Vec<3>(0.0, 0.0, 1.5), Vec<3>(5.0, 0.0, 0.5));
   const Vec<4> tree = treeAt(5.0, 0.0, 0.0, 0.3);
   REQUIRE_NOTHROW(model(camera, tree));
 
-  auto reason = [&](const Vec<13>& x, const Vec<4>& l) -> std::pair<ErrorCode, std::string> {
+  auto reason = [&](const Vec<7>& x, const Vec<4>& l) -> std::pair<ErrorCode, std::string> {
     try {
       model(x, l);
     } catch (const Error& e) {
@@ -346,7 +345,7 @@ TEST_CASE("TreeWidth rejects degenerate geometry and bad input with a reason",
     }
     return {ErrorCode::kMalformedData, "no throw"};
   };
-  auto expectDegenerate = [&](const Vec<13>& x, const Vec<4>& l, const std::string& words) {
+  auto expectDegenerate = [&](const Vec<7>& x, const Vec<4>& l, const std::string& words) {
     const auto [code, what] = reason(x, l);
     INFO(what);
     CHECK(code == ErrorCode::kDegenerateGeometry);
@@ -361,15 +360,15 @@ TEST_CASE("TreeWidth rejects degenerate geometry and bad input with a reason",
   }
   SECTION("trunk base crossing the image plane") {
     // Looking along +x from x = 0; the circle around x = 0.1 reaches x = -0.2.
-    const Vec<13> level = lookAt(Vec<3>(0.0, -1.0, 1.5), Vec<3>(1.0, -1.0, 1.5));
+    const Vec<7> level = lookAtPose(Vec<3>(0.0, -1.0, 1.5), Vec<3>(1.0, -1.0, 1.5));
     expectDegenerate(level, treeAt(0.1, 0.0, 0.0, 0.3), "in front of the camera");
   }
   SECTION("camera inside the trunk") {
-    const Vec<13> inside = lookAt(Vec<3>(5.1, 0.0, 3.0), Vec<3>(5.1, 0.01, 0.0));
+    const Vec<7> inside = lookAtPose(Vec<3>(5.1, 0.0, 3.0), Vec<3>(5.1, 0.01, 0.0));
     expectDegenerate(inside, tree, "inside the trunk");
   }
   SECTION("camera on the trunk surface") {
-    const Vec<13> on = lookAt(Vec<3>(5.0 - 0.3, 0.0, 3.0), Vec<3>(5.0, 0.0, 0.0));
+    const Vec<7> on = lookAtPose(Vec<3>(5.0 - 0.3, 0.0, 3.0), Vec<3>(5.0, 0.0, 0.0));
     expectDegenerate(on, tree, "inside the trunk");
   }
   SECTION("radius zero or negative") {
@@ -377,13 +376,13 @@ TEST_CASE("TreeWidth rejects degenerate geometry and bad input with a reason",
     expectDegenerate(camera, treeAt(5.0, 0.0, 0.0, -0.2), "radius");
   }
   SECTION("zero quaternion") {
-    Vec<13> x = camera;
+    Vec<7> x = camera;
     x.segment<4>(3).setZero();
     expectDegenerate(x, tree, "quaternion");
   }
   SECTION("non-finite input") {
-    for (int i = 0; i < 13; ++i) {
-      Vec<13> x = camera;
+    for (int i = 0; i < 7; ++i) {
+      Vec<7> x = camera;
       x[i] = std::numeric_limits<double>::quiet_NaN();
       INFO("camera entry " << i);
       CHECK(sylva_test::throwsCode([&] { model(x, tree); }, ErrorCode::kNonFinite));
@@ -397,7 +396,7 @@ TEST_CASE("TreeWidth rejects degenerate geometry and bad input with a reason",
   }
   SECTION("AutoDiff rejects the same input") {
     const AutoDiff<TreeWidth> automatic(model);
-    Mat<3, 13> J_z_x;
+    Mat<3, 7> J_z_x;
     CHECK(sylva_test::throwsCode([&] { automatic(camera, treeAt(-5.0, 0.0, 0.0, 0.3), J_z_x); },
                                  ErrorCode::kDegenerateGeometry));
   }
@@ -414,7 +413,7 @@ TEST_CASE("the filter refuses a measured width that is not positive, as InverseT
   ekf.add(1, sylva_test::CopyInit<ConstantVelocity3D, TreeXYZR>{}, treeAt(5.0, 0.0, 0.0, 0.3),
           Gaussian<4>::sigmas(Vec<4>::Constant(0.1)));
   const Gaussian<3> noise = Gaussian<3>::sigmas(Vec<3>::Constant(1.0));
-  const Vec<3> z = model(camera, treeAt(5.0, 0.0, 0.0, 0.3));
+  const Vec<3> z = model(ConstantVelocity3D::pose(camera), treeAt(5.0, 0.0, 0.0, 0.3));
   for (const double width : {0.0, -3.0}) {
     const Vec<3> bad(z[0], z[1], width);
     sylva_test::requireRejected(ekf, ErrorCode::kDegenerateGeometry, "the measured width must be > 0",

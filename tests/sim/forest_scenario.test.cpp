@@ -9,6 +9,7 @@
 
 #include <Eigen/Geometry>
 
+#include <sylva/motion/constant_velocity_3d.hpp>
 #include <sylva/sim/forest_scenario.hpp>
 
 #include "error_helpers.hpp"
@@ -123,7 +124,7 @@ TEST_CASE("the observer's visibility and occlusion rules", "[sim][observer]") {
   for (const auto& o : TreeObserver(camera, options).observe(x, trees, rng)) {
     ids.push_back(o.id);
     CHECK(o.z == o.z_true);
-    CHECK(o.z_true == TreeWidth(camera)(x, trees[o.id].xyzr()));
+    CHECK(o.z_true == TreeWidth(camera)(ConstantVelocity3D::pose(x), trees[o.id].xyzr()));
   }
   CHECK(ids == std::vector<Id>{0, 5});
   options.occlusion = false;

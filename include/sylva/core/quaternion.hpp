@@ -82,4 +82,19 @@ inline Mat<3, 3> skewSymmetric(const Vec<3>& a) {
   return S;
 }
 
+/// d (R(q)^T v) / d q (3x4) at a unit quaternion q = (w, x, y, z), v held fixed, from the
+/// extension R(q)^T v = v - 2 w (u x v) + 2 u x (u x v), u = (x, y, z). Off the unit sphere
+/// this differs from other extensions only in the direction of q, which a model that
+/// normalizes q removes with the normalization's Jacobian (I - q q^T) / |q|.
+inline Mat<3, 4> rotateTransposedJacobian(const Vec<4>& q, const Vec<3>& v) {
+  const double w = q[0];
+  const Vec<3> u = q.tail<3>();
+  Mat<3, 4> J;
+  const Vec<3> u_cross_v(u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]);
+  J.col(0) = -2.0 * u_cross_v;
+  J.rightCols<3>() = 2.0 * w * skewSymmetric(v) +
+                     2.0 * (u.dot(v) * Mat<3, 3>::Identity() + u * v.transpose() - 2.0 * v * u.transpose());
+  return J;
+}
+
 }  // namespace sylva

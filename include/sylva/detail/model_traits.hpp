@@ -203,6 +203,38 @@ Vec<Model::kDim> evaluateOn(const Model& model,
   }
 }
 
+/// The robot a conversion is written for: its `Robot` when it names one, else the filter's
+/// own (a conversion that ignores the robot need not name one).
+template <typename Conversion, typename Robot, typename = void>
+struct ConversionRobot {
+  using type = Robot;
+};
+template <typename Conversion, typename Robot>
+struct ConversionRobot<Conversion, Robot, std::void_t<typename Conversion::Robot>> {
+  using type = typename Conversion::Robot;
+};
+template <typename Conversion, typename Robot>
+using ConversionRobotT = typename ConversionRobot<Conversion, Robot>::type;
+
+/// out = f(view, J_out_view) for a function written for `ModelRobot`, evaluated for a filter
+/// whose robot is `Robot`: the view is the robot state itself when ModelRobot fits directly,
+/// else the pose view Robot::pose(x), and J_out_x = J_out_view J_pose_x. Serves inverse
+/// models (`Ekf::add`) and conversions (`Ekf::reparametrize`).
+template <typename ModelRobot, typename Robot, int Rows, typename F>
+Vec<Rows> throughRobotView(const Vec<Robot::kDim>& x, Mat<Rows, Robot::kDim>& J_out_x, F&& f) {
+  if constexpr (kRobotFitsDirectly<ModelRobot, Robot>) {
+    return f(x, J_out_x);
+  } else {
+    constexpr int P = ModelRobot::kDim;
+    Mat<P, Robot::kDim> J_pose;
+    const Vec<P> view = Robot::pose(x, J_pose);
+    Mat<Rows, P> J_out_view;
+    const Vec<Rows> out = f(view, J_out_view);
+    J_out_x = J_out_view * J_pose;
+    return out;
+  }
+}
+
 /// A new landmark from its first measurement, l = g(view of x, z), for a filter whose robot
 /// is `Robot`; J_l_x is chained through the pose view as in evaluateOn.
 template <typename Robot, typename InverseModel>
@@ -211,17 +243,8 @@ Vec<InverseModel::Landmark::kDim> initializeOn(const InverseModel& inverse,
                                               const Vec<InverseModel::kMeasurementDim>& z,
                                               Mat<InverseModel::Landmark::kDim, Robot::kDim>& J_l_x,
                                               Mat<InverseModel::Landmark::kDim, InverseModel::kMeasurementDim>& J_l_z) {
-  if constexpr (kRobotFitsDirectly<typename InverseModel::Robot, Robot>) {
-    return inverse(x, z, J_l_x, J_l_z);
-  } else {
-    constexpr int P = InverseModel::Robot::kDim;
-    Mat<P, Robot::kDim> J_pose;
-    const Vec<P> pose = Robot::pose(x, J_pose);
-    Mat<InverseModel::Landmark::kDim, P> J_l_pose;
-    const Vec<InverseModel::Landmark::kDim> l = inverse(pose, z, J_l_pose, J_l_z);
-    J_l_x = J_l_pose * J_pose;
-    return l;
-  }
+  return throughRobotView<typename InverseModel::Robot, Robot>(
+      x, J_l_x, [&](const auto& view, auto& J_l_view) { return inverse(view, z, J_l_view, J_l_z); });
 }
 
 /// The innovation z - z_hat, through the model's own `residual` when it has one.

@@ -803,11 +803,14 @@ class BasicEkf {
     using To = typename Conversion::To;
     static_assert(kHolds<From> && kHolds<To>,
                   "both parametrizations of the conversion must be in the filter's Landmarks... list");
+    static_assert(detail::kRobotFits<detail::ConversionRobotT<Conversion, Robot>, Robot>,
+                  "the conversion is written for another robot (or for a pose view this robot does not expose)");
     const LandmarkSlot s = typedSlot<From>(id, Conversion::kName);
     Mat<To::kDim, kRobotStateDim> J_x;
     Mat<To::kDim, From::kDim> J_l;
-    const Vec<To::kDim> new_mean =
-        conversion(robotMean(), Vec<From::kDim>(mean_.template segment<From::kDim>(s.offset)), J_x, J_l);
+    const Vec<From::kDim> from_mean = mean_.template segment<From::kDim>(s.offset);
+    const Vec<To::kDim> new_mean = detail::throughRobotView<detail::ConversionRobotT<Conversion, Robot>, Robot>(
+        robotMean(), J_x, [&](const auto& view, auto& J_view) { return conversion(view, from_mean, J_view, J_l); });
     replaceBlock<From, To>(s, new_mean, detail::onTangent<Robot>(J_x, robotMean()), J_l, Mat<To::kDim, To::kDim>::Zero(),
                            Conversion::kName);
   }
@@ -826,13 +829,16 @@ class BasicEkf {
     constexpr int Z = Conversion::kMeasurementDim;
     static_assert(kHolds<From> && kHolds<To>,
                   "both parametrizations of the conversion must be in the filter's Landmarks... list");
+    static_assert(detail::kRobotFits<detail::ConversionRobotT<Conversion, Robot>, Robot>,
+                  "the conversion is written for another robot (or for a pose view this robot does not expose)");
     const LandmarkSlot s = typedSlot<From>(id, Conversion::kName);
     if (!z.allFinite()) fail(ErrorCode::kNonFinite, std::string(Conversion::kName) + ": measurement is not finite");
     Mat<To::kDim, kRobotStateDim> J_x;
     Mat<To::kDim, From::kDim> J_l;
     Mat<To::kDim, Z> J_z;
-    const Vec<To::kDim> new_mean = conversion(
-        robotMean(), Vec<From::kDim>(mean_.template segment<From::kDim>(s.offset)), z, J_x, J_l, J_z);
+    const Vec<From::kDim> from_mean = mean_.template segment<From::kDim>(s.offset);
+    const Vec<To::kDim> new_mean = detail::throughRobotView<detail::ConversionRobotT<Conversion, Robot>, Robot>(
+        robotMean(), J_x, [&](const auto& view, auto& J_view) { return conversion(view, from_mean, z, J_view, J_l, J_z); });
     if (!J_z.allFinite())
       fail(ErrorCode::kNonFinite, std::string(Conversion::kName) + ": conversion is not finite");
     const Mat<To::kDim, To::kDim> added = J_z * noise.covariance() * J_z.transpose();

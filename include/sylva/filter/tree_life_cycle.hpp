@@ -117,7 +117,7 @@ class TreeLifeCycle {
     for (const auto& slot : ekf.slots()) {
       if (ekf.template holds<InverseDepth>(slot.id) && to_xyz_(ekf, slot.id)) ready.push_back(slot.id);
     }
-    for (Id id : ready) ekf.reparametrize(id, InverseDepthToPoint3<ConstantVelocity3D>{});
+    for (Id id : ready) ekf.reparametrize(id, InverseDepthToPoint3<Pose3D>{});
     return ready;
   }
 
@@ -130,7 +130,7 @@ class TreeLifeCycle {
     for (const auto& slot : ekf.slots()) {
       if (ekf.template holds<InverseDepthRadius>(slot.id) && to_xyz_(ekf, slot.id)) ready.push_back(slot.id);
     }
-    for (Id id : ready) ekf.reparametrize(id, InverseDepthRadiusToTree<ConstantVelocity3D>{});
+    for (Id id : ready) ekf.reparametrize(id, InverseDepthRadiusToTree<Pose3D>{});
     return ready;
   }
 

@@ -1,7 +1,7 @@
 #pragma once
 /// @file
 /// `InverseDepthInitialization`: a new `InverseDepth` landmark from the first pixel at which
-/// a `ConstantVelocity3D` camera sees it, the inverse model for `Ekf::add` (Civera, Davison,
+/// a camera at a `Pose3D` sees it, the inverse model for `Ekf::add` (Civera, Davison,
 /// Montiel 2008, "Inverse depth parametrization for monocular SLAM", feature initialization).
 ///
 /// A single image fixes the ray to the point but not its depth. As Civera et al. do, the
@@ -33,9 +33,8 @@
 ///   d h_W / dq = d(R(q/|q|) h_C)/dq = D(q*/|q|, h_C) diag(1, -1, -1, -1) (I - q q^T/|q|^2)/|q|
 ///
 /// where q* is the conjugate and D(q, w) = d(R(q)^T w)/dq is
-/// `TreeWidth::rotateTransposedJacobian` (R(q) w = R(q*)^T w). J_l_x is the identity in the
-/// position columns, the angle rows times d h_W / dq in the quaternion columns, and zero in
-/// the velocity columns; J_l_z has the angle rows times [d h_W/du, d h_W/dv] and a 1 at
+/// `rotateTransposedJacobian` (R(q) w = R(q*)^T w). J_l_x is the identity in the
+/// position columns and the angle rows times d h_W / dq in the quaternion columns; J_l_z has the angle rows times [d h_W/du, d h_W/dv] and a 1 at
 /// (rho, rho0).
 ///
 /// Near the zenith or nadir (phi -> +-pi/2) the azimuth loses its meaning: d theta / d h_W
@@ -60,14 +59,13 @@
 #include "sylva/landmarks/inverse_depth.hpp"
 #include "sylva/measurements/pinhole_camera.hpp"
 #include "sylva/measurements/pinhole_point.hpp"
-#include "sylva/measurements/tree_width.hpp"
-#include "sylva/motion/constant_velocity_3d.hpp"
+#include "sylva/motion/pose_3d.hpp"
 #include "sylva/noise/gaussian.hpp"
 
 namespace sylva {
 
 struct InverseDepthInitialization {
-  using Robot = ConstantVelocity3D;
+  using Robot = Pose3D;
   using Landmark = InverseDepth;
   static constexpr int kMeasurementDim = 3;  ///< [u_px, v_px, rho0_per_m]
   static constexpr const char* kName = "InverseDepthInitialization";
@@ -115,10 +113,10 @@ struct InverseDepthInitialization {
     return Gaussian<3>::covariance(covariance);
   }
 
-  /// The landmark [t, theta, phi, rho0] with J_l_x (6x13) and J_l_z (6x3).
-  Vec<6> operator()(const Vec<13>& camera,
+  /// The landmark [t, theta, phi, rho0] with J_l_x (6x7) and J_l_z (6x3).
+  Vec<6> operator()(const Vec<7>& camera,
                     const Vec<3>& z,
-                    JacobianRef<6, 13> J_l_x = {},
+                    JacobianRef<6, 7> J_l_x = {},
                     JacobianRef<6, 3> J_l_z = {}) const {
     detail::PinholePointMath::checkCamera(camera, kName);
     if (!z.allFinite())
@@ -128,8 +126,8 @@ struct InverseDepthInitialization {
       os << kName << ": the prior inverse depth z[2] = " << z[2] << " 1/m must be >= 0";
       fail(ErrorCode::kDegenerateGeometry, os.str());
     }
-    const double q_norm = camera.segment<4>(3).norm();
-    const Vec<4> q = camera.segment<4>(3) / q_norm;
+    const double q_norm = camera.segment<4>(Pose3D::kQuaternion).norm();
+    const Vec<4> q = camera.segment<4>(Pose3D::kQuaternion) / q_norm;
     const Mat<3, 3> R = rotationMatrix<double>(q);
     const Vec<3> h_C((z[0] - camera_.cx) / camera_.fx, (z[1] - camera_.cy) / camera_.fy, 1.0);
     const Vec<3> h_W = R * h_C;
@@ -154,7 +152,7 @@ struct InverseDepthInitialization {
     if (J_l_x) {
       // R(q) h_C = R(q*)^T h_C, q* = (w, -x, -y, -z).
       const Vec<4> q_conj(q[0], -q[1], -q[2], -q[3]);
-      Mat<3, 4> J_h_q = TreeWidth::rotateTransposedJacobian(q_conj, h_C);
+      Mat<3, 4> J_h_q = rotateTransposedJacobian(q_conj, h_C);
       J_h_q.rightCols<3>() *= -1.0;
       const Mat<4, 4> J_unit = (Mat<4, 4>::Identity() - q * q.transpose()) / q_norm;
       auto J = *J_l_x;

@@ -2,8 +2,8 @@
 /// @file
 /// `InverseDepthTreeWidth`: the tree-width measurement z = [u, v, w] (pixels, exactly as
 /// `TreeWidth`: centre of the image ellipse of the trunk's base circle and its horizontal
-/// extent) of an `InverseDepthRadius` (IDR) tree seen by a `ConstantVelocity3D` pinhole
-/// camera; and `InverseDepthRadiusInitialization`, the inverse model that starts an IDR tree
+/// extent) of an `InverseDepthRadius` (IDR) tree seen by a pinhole camera at
+/// a `Pose3D`; and `InverseDepthRadiusInitialization`, the inverse model that starts an IDR tree
 /// from its first [u, v, w], radius included. Beyond the tree-width thesis, whose trees
 /// start as inverse-depth points and get a radius only once their position is known (Sec.
 /// 3.5, Fig. 3.3; Ch. 5 asks for "a parametrization that carries the radius from the first
@@ -41,7 +41,7 @@
 /// Errors are TreeWidth's, rethrown with the same code and a message starting with
 /// "InverseDepthTreeWidth:" (lengths in them are those of the scaled tree, i.e. times rho).
 ///
-/// Jacobians, by the chain rule from TreeWidth's J' = [J'_x (3x13), J'_c (3x3), J'_r (3x1)]
+/// Jacobians, by the chain rule from TreeWidth's J' = [J'_x (3x7), J'_c (3x3), J'_r (3x1)]
 /// at (x_0, l'): c' depends on the camera position as -rho I and not on q (and x_0's
 /// position is the constant 0, so TreeWidth's delta c' - 0 is the one the chain needs):
 ///
@@ -103,7 +103,7 @@
 #include "sylva/measurements/pinhole_camera.hpp"
 #include "sylva/measurements/pinhole_point.hpp"
 #include "sylva/measurements/tree_width.hpp"
-#include "sylva/motion/constant_velocity_3d.hpp"
+#include "sylva/motion/pose_3d.hpp"
 #include "sylva/noise/gaussian.hpp"
 
 namespace sylva {
@@ -133,7 +133,7 @@ inline Mat<3, 2> inverseDepthDirectionJacobian(double theta, double phi) {
 }  // namespace detail
 
 struct InverseDepthTreeWidth {
-  using Robot = ConstantVelocity3D;
+  using Robot = Pose3D;
   using Landmark = InverseDepthRadius;
   static constexpr int kDim = 3;  ///< [u_px, v_px, width_px]
   static constexpr const char* kName = "InverseDepthTreeWidth";
@@ -152,9 +152,9 @@ struct InverseDepthTreeWidth {
   /// Predicted [u, v, w] (pixels), generic in the scalar for automatic differentiation:
   /// TreeWidth::predict<T> of the scaled tree (see the file comment).
   template <typename T>
-  Vec<3, T> predict(const Vec<13, T>& camera, const Vec<7, T>& l) const {
+  Vec<3, T> predict(const Vec<7, T>& camera, const Vec<7, T>& l) const {
     checkInputs(camera, l);
-    Vec<13, T> camera_0 = camera;
+    Vec<7, T> camera_0 = camera;
     camera_0.template head<3>().setZero();
     Vec<4, T> tree_0;
     tree_0.template head<3>() = l[5] * Vec<3, T>(l.template head<3>() - camera.template head<3>()) +
@@ -167,25 +167,25 @@ struct InverseDepthTreeWidth {
     }
   }
 
-  /// Prediction with the analytic Jacobians J_z_x (3x13) and J_z_l (3x7).
-  Vec<3> operator()(const Vec<13>& camera,
+  /// Prediction with the analytic Jacobians J_z_x (3x7) and J_z_l (3x7).
+  Vec<3> operator()(const Vec<7>& camera,
                     const Vec<7>& l,
-                    JacobianRef<3, 13> J_z_x = {},
+                    JacobianRef<3, 7> J_z_x = {},
                     JacobianRef<3, 7> J_z_l = {}) const {
     checkInputs(camera, l);
     const double rho = l[5];
     const Vec<3> anchor_from_camera = l.head<3>() - camera.head<3>();  // a - t
-    Vec<13> camera_0 = camera;
+    Vec<7> camera_0 = camera;
     camera_0.head<3>().setZero();
     Vec<4> tree_0;
     tree_0 << rho * anchor_from_camera + InverseDepth::direction<double>(l[3], l[4]), l[6];
     const bool jacobians = J_z_x || J_z_l;
-    Mat<3, 13> J0_x;  // J'_x at (x_0, l')
+    Mat<3, 7> J0_x;  // J'_x at (x_0, l')
     Mat<3, 4> J0_l;   // [J'_c, J'_r]
     Vec<3> z;
     try {
       if (!jacobians) return forward_(camera_0, tree_0);
-      z = forward_(camera_0, tree_0, J_z_x ? JacobianRef<3, 13>(J0_x) : JacobianRef<3, 13>(), J0_l);
+      z = forward_(camera_0, tree_0, J_z_x ? JacobianRef<3, 7>(J0_x) : JacobianRef<3, 7>(), J0_l);
     } catch (const Error& e) {
       rethrow(e, rho);
     }
@@ -208,8 +208,8 @@ struct InverseDepthTreeWidth {
 
  private:
   template <typename T>
-  static void checkInputs(const Vec<13, T>& camera, const Vec<7, T>& l) {
-    for (int i = 0; i < 13; ++i) {
+  static void checkInputs(const Vec<7, T>& camera, const Vec<7, T>& l) {
+    for (int i = 0; i < 7; ++i) {
       if (!std::isfinite(scalarValue(camera[i])))
         fail(ErrorCode::kNonFinite, "InverseDepthTreeWidth: the camera state is not finite");
     }
@@ -241,7 +241,7 @@ struct InverseDepthTreeWidth {
 };
 
 struct InverseDepthRadiusInitialization {
-  using Robot = ConstantVelocity3D;
+  using Robot = Pose3D;
   using Landmark = InverseDepthRadius;
   static constexpr int kMeasurementDim = 4;  ///< [u_px, v_px, width_px, rho0_per_m]
   static constexpr const char* kName = "InverseDepthRadiusInitialization";
@@ -274,10 +274,10 @@ struct InverseDepthRadiusInitialization {
     return Gaussian<4>::covariance(covariance);
   }
 
-  /// The landmark [t, theta, phi, rho0, kappa] with J_l_x (7x13) and J_l_z (7x4).
-  Vec<7> operator()(const Vec<13>& camera,
+  /// The landmark [t, theta, phi, rho0, kappa] with J_l_x (7x7) and J_l_z (7x4).
+  Vec<7> operator()(const Vec<7>& camera,
                     const Vec<4>& z,
-                    JacobianRef<7, 13> J_l_x = {},
+                    JacobianRef<7, 7> J_l_x = {},
                     JacobianRef<7, 4> J_l_z = {}) const {
     detail::PinholePointMath::checkCamera(camera, kName);
     if (!z.allFinite())
@@ -294,19 +294,19 @@ struct InverseDepthRadiusInitialization {
     }
     // The ray and the prior depth: l[0..5] with their Jacobians.
     const Vec<3> z_ray(z[0], z[1], z[3]);
-    Mat<6, 13> J6_x;  // of [t, theta, phi, rho0] w.r.t. the camera
+    Mat<6, 7> J6_x;  // of [t, theta, phi, rho0] w.r.t. the camera
     Mat<6, 3> J6_z;   // ... w.r.t. [u, v, rho0]
     Vec<6> l6;
     try {
       l6 = inverse_depth_(camera,
                           z_ray,
-                          J_l_x ? JacobianRef<6, 13>(J6_x) : JacobianRef<6, 13>(),
+                          J_l_x ? JacobianRef<6, 7>(J6_x) : JacobianRef<6, 7>(),
                           J_l_z ? JacobianRef<6, 3>(J6_z) : JacobianRef<6, 3>());
     } catch (const Error& e) {
       fail(e.code(), std::string(kName) + ": " + detail::errorReason(e));
     }
     // kappa: the radius of the tree at unit depth along m seen from the camera at the origin.
-    Vec<13> camera_0 = camera;
+    Vec<7> camera_0 = camera;
     camera_0.head<3>().setZero();
     const Vec<3> m = InverseDepth::direction<double>(l6[3], l6[4]);
     double kappa = 0.0;
@@ -328,12 +328,12 @@ struct InverseDepthRadiusInitialization {
     // function theorem.
     Vec<4> tree_0;
     tree_0 << m, kappa;
-    Mat<3, 13> J0_x;
+    Mat<3, 7> J0_x;
     Mat<3, 4> J0_l;
     Vec<3> z_hat;
     try {
       z_hat =
-          width_(camera_0, tree_0, J_l_x ? JacobianRef<3, 13>(J0_x) : JacobianRef<3, 13>(), J0_l);
+          width_(camera_0, tree_0, J_l_x ? JacobianRef<3, 7>(J0_x) : JacobianRef<3, 7>(), J0_l);
     } catch (const Error& e) {
       std::ostringstream os;
       os << kName << ": at the solved kappa = " << kappa

@@ -53,12 +53,12 @@
 #include "sylva/landmarks/tree_xyzr.hpp"
 #include "sylva/measurements/pinhole_camera.hpp"
 #include "sylva/measurements/tree_width.hpp"
-#include "sylva/motion/constant_velocity_3d.hpp"
+#include "sylva/motion/pose_3d.hpp"
 
 namespace sylva {
 
 struct InverseTreeWidth {
-  using Robot = ConstantVelocity3D;
+  using Robot = Pose3D;
   using From = Point3;
   using To = TreeXYZR;
   static constexpr int kMeasurementDim = 3;  ///< the TreeWidth measurement [u, v, w]; w is used
@@ -73,9 +73,9 @@ struct InverseTreeWidth {
   /// seen from `camera`. Generic in the scalar; checks only what the closed form needs
   /// (use operator() for the full validation).
   template <typename T>
-  T radius(const Vec<13, T>& camera, const Vec<3, T>& base, const T& width_px) const {
+  T radius(const Vec<7, T>& camera, const Vec<3, T>& base, const T& width_px) const {
     using std::sqrt;
-    const Vec<4, T> q = camera.template segment<4>(3) / camera.template segment<4>(3).norm();
+    const Vec<4, T> q = camera.template segment<4>(Pose3D::kQuaternion) / camera.template segment<4>(Pose3D::kQuaternion).norm();
     const Mat<3, 3, T> Rt = rotationMatrix<T>(q).transpose();
     const Vec<3, T> n = Rt.col(2);
     const Vec<3, T> C = Rt * Vec<3, T>(base - camera.template head<3>());
@@ -103,11 +103,11 @@ struct InverseTreeWidth {
     return sqrt(s);
   }
 
-  /// The XYZ-R landmark [base, r] with J_to_x (4x13), J_to_l (4x3) and J_to_z (4x3).
-  Vec<4> operator()(const Vec<13>& camera,
+  /// The XYZ-R landmark [base, r] with J_to_x (4x7), J_to_l (4x3) and J_to_z (4x3).
+  Vec<4> operator()(const Vec<7>& camera,
                     const Vec<3>& base,
                     const Vec<3>& z,
-                    JacobianRef<4, 13> J_to_x = {},
+                    JacobianRef<4, 7> J_to_x = {},
                     JacobianRef<4, 3> J_to_l = {},
                     JacobianRef<4, 3> J_to_z = {}) const {
     if (!camera.allFinite()) fail(ErrorCode::kNonFinite, "InverseTreeWidth: the camera state is not finite");
@@ -118,7 +118,7 @@ struct InverseTreeWidth {
       os << "InverseTreeWidth: the measured width must be > 0 pixels, got " << z[2];
       fail(ErrorCode::kDegenerateGeometry, os.str());
     }
-    if (!(camera.segment<4>(3).norm() > TreeWidth::kMinQuaternionNorm))
+    if (!(camera.segment<4>(Pose3D::kQuaternion).norm() > TreeWidth::kMinQuaternionNorm))
       fail(ErrorCode::kDegenerateGeometry, "InverseTreeWidth: the orientation quaternion has (near) zero norm");
     const double r = radius<double>(camera, base, z[2]);
     if (!std::isfinite(r) || !(r > 0.0))
@@ -127,7 +127,7 @@ struct InverseTreeWidth {
     tree << base, r;
     // The forward model validates the geometry at the solved radius (camera inside the
     // trunk, base circle crossing the image plane, ...) and gives the Jacobian.
-    Mat<3, 13> J_z_x;
+    Mat<3, 7> J_z_x;
     Mat<3, 4> J_z_l;
     Vec<3> z_hat;
     try {

@@ -1,7 +1,7 @@
 #pragma once
 /// @file
-/// `PinholePoint<Landmark>`: the pixel z = [u, v] at which a pinhole camera whose state is
-/// `ConstantVelocity3D` sees a point landmark, for `Point3` (a world point) and `InverseDepth`
+/// `PinholePoint<Landmark>`: the pixel z = [u, v] at which a pinhole camera at a `Pose3D`
+/// (any robot with a 3D pose view) sees a point landmark, for `Point3` (a world point) and `InverseDepth`
 /// (Civera, Davison, Montiel 2008, "Inverse depth parametrization for monocular SLAM").
 ///
 /// With the camera at t = r_WC and R = R(q / |q|) (camera -> world), the point in the camera
@@ -17,7 +17,7 @@
 ///
 ///   u = cx + fx X / Z,   v = cy + fy Y / Z,   h = (X, Y, Z).
 ///
-/// Jacobians (additive perturbations; the velocity columns 7-12 of J_z_x are zero):
+/// Jacobians (additive perturbations of the pose [t, q]):
 ///
 ///   dz/dh = [ fx / Z   0        -fx X / Z^2 ]
 ///           [ 0        fy / Z   -fy Y / Z^2 ]
@@ -27,7 +27,7 @@
 ///   both:          dh/dq = D(q/|q|, w) (I - q q^T / |q|^2) / |q|
 ///
 /// with w = p - t (resp. rho (a - t) + m) and D(q, w) = d(R(q)^T w)/dq from
-/// `TreeWidth::rotateTransposedJacobian`: as in TreeWidth, the model normalizes the state's
+/// `rotateTransposedJacobian`: as in TreeWidth, the model normalizes the state's
 /// quaternion itself, so h does not change along q and the Jacobian carries the
 /// normalization's.
 ///
@@ -57,8 +57,7 @@
 #include "sylva/landmarks/inverse_depth.hpp"
 #include "sylva/landmarks/point3.hpp"
 #include "sylva/measurements/pinhole_camera.hpp"
-#include "sylva/measurements/tree_width.hpp"
-#include "sylva/motion/constant_velocity_3d.hpp"
+#include "sylva/motion/pose_3d.hpp"
 
 namespace sylva {
 
@@ -75,12 +74,12 @@ struct PinholePointMath {
   /// Throws kNonFinite for NaN/Inf in the camera state and kDegenerateGeometry for a
   /// (near) zero quaternion.
   template <typename T>
-  static void checkCamera(const Vec<13, T>& camera, const char* who) {
-    for (int i = 0; i < 13; ++i) {
+  static void checkCamera(const Vec<7, T>& camera, const char* who) {
+    for (int i = 0; i < 7; ++i) {
       if (!std::isfinite(scalarValue(camera[i])))
         fail(ErrorCode::kNonFinite, std::string(who) + ": the camera state is not finite");
     }
-    const double q_norm = std::sqrt(scalarValue(camera.template segment<4>(3).squaredNorm()));
+    const double q_norm = std::sqrt(scalarValue(camera.template segment<4>(Pose3D::kQuaternion).squaredNorm()));
     if (!std::isfinite(q_norm))
       fail(ErrorCode::kNonFinite, std::string(who) + ": the quaternion's norm overflows");
     if (!(q_norm >= kMinQuaternionNorm)) {
@@ -92,8 +91,8 @@ struct PinholePointMath {
 
   /// R(q / |q|)^T: world -> camera.
   template <typename T>
-  static Mat<3, 3, T> worldToCamera(const Vec<13, T>& camera) {
-    const Vec<4, T> q = camera.template segment<4>(3) / camera.template segment<4>(3).norm();
+  static Mat<3, 3, T> worldToCamera(const Vec<7, T>& camera) {
+    const Vec<4, T> q = camera.template segment<4>(Pose3D::kQuaternion) / camera.template segment<4>(Pose3D::kQuaternion).norm();
     return rotationMatrix<T>(q).transpose();
   }
 
@@ -136,7 +135,7 @@ struct PinholePointMath {
     const double q_norm = q.norm();
     const Vec<4> q_unit = q / q_norm;
     const Mat<4, 4> J_unit = (Mat<4, 4>::Identity() - q_unit * q_unit.transpose()) / q_norm;
-    return TreeWidth::rotateTransposedJacobian(q_unit, w) * J_unit;
+    return rotateTransposedJacobian(q_unit, w) * J_unit;
   }
 };
 
@@ -152,7 +151,7 @@ struct PinholePoint {
 /// Pixel of a world point: h = R^T (p - t).
 template <>
 struct PinholePoint<Point3> {
-  using Robot = ConstantVelocity3D;
+  using Robot = Pose3D;
   using Landmark = Point3;
   static constexpr int kDim = 2;  ///< [u_px, v_px]
   static constexpr const char* kName = "PinholePoint<Point3>";
@@ -164,22 +163,22 @@ struct PinholePoint<Point3> {
 
   /// The camera-frame point R^T (p - t), generic in the scalar.
   template <typename T>
-  static Vec<3, T> cameraPoint(const Vec<13, T>& camera, const Vec<3, T>& point) {
+  static Vec<3, T> cameraPoint(const Vec<7, T>& camera, const Vec<3, T>& point) {
     return detail::PinholePointMath::worldToCamera<T>(camera) *
            Vec<3, T>(point - camera.template head<3>());
   }
 
   /// Predicted pixel [u, v], generic in the scalar for automatic differentiation.
   template <typename T>
-  Vec<2, T> predict(const Vec<13, T>& camera, const Vec<3, T>& point) const {
+  Vec<2, T> predict(const Vec<7, T>& camera, const Vec<3, T>& point) const {
     checkInputs(camera, point);
     return detail::PinholePointMath::project<T>(camera_, cameraPoint<T>(camera, point), kName);
   }
 
-  /// Prediction with the analytic Jacobians J_z_x (2x13) and J_z_l (2x3).
-  Vec<2> operator()(const Vec<13>& camera,
+  /// Prediction with the analytic Jacobians J_z_x (2x7) and J_z_l (2x3).
+  Vec<2> operator()(const Vec<7>& camera,
                     const Vec<3>& point,
-                    JacobianRef<2, 13> J_z_x = {},
+                    JacobianRef<2, 7> J_z_x = {},
                     JacobianRef<2, 3> J_z_l = {}) const {
     using Math = detail::PinholePointMath;
     checkInputs(camera, point);
@@ -195,7 +194,7 @@ struct PinholePoint<Point3> {
       J.setZero();
       J.leftCols<3>() = -J_z_p;
       J.middleCols<4>(3) =
-          J_z_h * Math::rotateTransposedJacobianNormalized(camera.segment<4>(3), w);
+          J_z_h * Math::rotateTransposedJacobianNormalized(camera.segment<4>(Pose3D::kQuaternion), w);
     }
     if (J_z_l) *J_z_l = J_z_p;
     return z;
@@ -203,7 +202,7 @@ struct PinholePoint<Point3> {
 
  private:
   template <typename T>
-  static void checkInputs(const Vec<13, T>& camera, const Vec<3, T>& point) {
+  static void checkInputs(const Vec<7, T>& camera, const Vec<3, T>& point) {
     detail::PinholePointMath::checkCamera(camera, kName);
     for (int i = 0; i < 3; ++i) {
       if (!std::isfinite(scalarValue(point[i])))
@@ -217,7 +216,7 @@ struct PinholePoint<Point3> {
 /// Pixel of an inverse-depth point: h = R^T (rho (a - t) + m(theta, phi)).
 template <>
 struct PinholePoint<InverseDepth> {
-  using Robot = ConstantVelocity3D;
+  using Robot = Pose3D;
   using Landmark = InverseDepth;
   static constexpr int kDim = 2;  ///< [u_px, v_px]
   static constexpr const char* kName = "PinholePoint<InverseDepth>";
@@ -230,7 +229,7 @@ struct PinholePoint<InverseDepth> {
   /// The camera-frame ray R^T (rho (a - t) + m), generic in the scalar: the point in the
   /// camera frame times rho (for rho > 0).
   template <typename T>
-  static Vec<3, T> cameraRay(const Vec<13, T>& camera, const Vec<6, T>& l) {
+  static Vec<3, T> cameraRay(const Vec<7, T>& camera, const Vec<6, T>& l) {
     const Vec<3, T> w = l[5] * Vec<3, T>(l.template head<3>() - camera.template head<3>()) +
                         InverseDepth::direction<T>(l[3], l[4]);
     return detail::PinholePointMath::worldToCamera<T>(camera) * w;
@@ -238,15 +237,15 @@ struct PinholePoint<InverseDepth> {
 
   /// Predicted pixel [u, v], generic in the scalar for automatic differentiation.
   template <typename T>
-  Vec<2, T> predict(const Vec<13, T>& camera, const Vec<6, T>& l) const {
+  Vec<2, T> predict(const Vec<7, T>& camera, const Vec<6, T>& l) const {
     checkInputs(camera, l);
     return detail::PinholePointMath::project<T>(camera_, cameraRay<T>(camera, l), kName);
   }
 
-  /// Prediction with the analytic Jacobians J_z_x (2x13) and J_z_l (2x6).
-  Vec<2> operator()(const Vec<13>& camera,
+  /// Prediction with the analytic Jacobians J_z_x (2x7) and J_z_l (2x6).
+  Vec<2> operator()(const Vec<7>& camera,
                     const Vec<6>& l,
-                    JacobianRef<2, 13> J_z_x = {},
+                    JacobianRef<2, 7> J_z_x = {},
                     JacobianRef<2, 6> J_z_l = {}) const {
     using Math = detail::PinholePointMath;
     checkInputs(camera, l);
@@ -264,7 +263,7 @@ struct PinholePoint<InverseDepth> {
       J.setZero();
       J.leftCols<3>() = -rho * J_z_w;
       J.middleCols<4>(3) =
-          J_z_h * Math::rotateTransposedJacobianNormalized(camera.segment<4>(3), w);
+          J_z_h * Math::rotateTransposedJacobianNormalized(camera.segment<4>(Pose3D::kQuaternion), w);
     }
     if (J_z_l) {
       const double ct = std::cos(l[3]), st = std::sin(l[3]);
@@ -280,7 +279,7 @@ struct PinholePoint<InverseDepth> {
 
  private:
   template <typename T>
-  static void checkInputs(const Vec<13, T>& camera, const Vec<6, T>& l) {
+  static void checkInputs(const Vec<7, T>& camera, const Vec<6, T>& l) {
     detail::PinholePointMath::checkCamera(camera, kName);
     for (int i = 0; i < 6; ++i) {
       if (!std::isfinite(scalarValue(l[i])))

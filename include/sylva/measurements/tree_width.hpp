@@ -1,7 +1,7 @@
 #pragma once
 /// @file
-/// `TreeWidth`: the image of a tree trunk's base circle seen by a pinhole camera whose state
-/// is `ConstantVelocity3D`, for a `TreeXYZR` landmark (tree-width thesis, Sec. 3.2, 3.4 and
+/// `TreeWidth`: the image of a tree trunk's base circle seen by a pinhole camera at a
+/// `Pose3D` (any robot with a 3D pose view: `ConstantVelocity3D`, ...), for a `TreeXYZR` landmark (tree-width thesis, Sec. 3.2, 3.4 and
 /// App. A.1-A.2). The measurement is z = [u, v, w] in pixels: the centre of the image
 /// ellipse of the base circle and its horizontal extent (max u - min u).
 ///
@@ -41,11 +41,12 @@
 ///          dw = fx/s dd11 - 2 fx d13/(d33 s) dd13 + (fx d11/(d33 s) + 2 fx s/d33^2) dd33,
 ///          s = sqrt(d13^2 - d11 d33)
 ///   dC/dt = -R^T, dC/dc = R^T, dC/dq and dn/dq from d(R(q)^T v)/dq (see
-///   `rotateTransposedJacobian`).
+///   `rotateTransposedJacobian` in core/quaternion.hpp).
 ///
 /// The quaternion. The model uses R(q / |q|): the state's quaternion is normalized inside
 /// the model, so h does not change along q and J_z_x includes the normalization's Jacobian
-/// (I - q q^T / |q|^2) / |q|. The velocity columns (7-12) of J_z_x are zero.
+/// (I - q q^T / |q|^2) / |q|. J_z_x is taken w.r.t. the pose
+/// [t, q]; the filter chains it through the robot's pose view.
 ///
 /// Degenerate geometry throws `kDegenerateGeometry` with the reason: r <= 0; the camera
 /// inside the trunk (horizontal distance from the camera to the trunk axis <= r); a point of
@@ -58,8 +59,6 @@
 #include <cmath>
 #include <sstream>
 
-#include <Eigen/Geometry>
-
 #include "sylva/core/error.hpp"
 #include "sylva/core/jacobian_ref.hpp"
 #include "sylva/core/quaternion.hpp"
@@ -67,12 +66,12 @@
 #include "sylva/core/types.hpp"
 #include "sylva/landmarks/tree_xyzr.hpp"
 #include "sylva/measurements/pinhole_camera.hpp"
-#include "sylva/motion/constant_velocity_3d.hpp"
+#include "sylva/motion/pose_3d.hpp"
 
 namespace sylva {
 
 struct TreeWidth {
-  using Robot = ConstantVelocity3D;
+  using Robot = Pose3D;
   using Landmark = TreeXYZR;
   static constexpr int kDim = 3;  ///< [u_px, v_px, width_px]
   static constexpr const char* kName = "TreeWidth";
@@ -92,10 +91,10 @@ struct TreeWidth {
 
   /// Predicted [u, v, w] (pixels), generic in the scalar for automatic differentiation.
   template <typename T>
-  Vec<3, T> predict(const Vec<13, T>& camera, const Vec<4, T>& tree) const {
+  Vec<3, T> predict(const Vec<7, T>& camera, const Vec<4, T>& tree) const {
     using std::sqrt;
     checkInputs(camera, tree);
-    const Vec<4, T> q = camera.template segment<4>(3) / camera.template segment<4>(3).norm();
+    const Vec<4, T> q = camera.template segment<4>(Pose3D::kQuaternion) / camera.template segment<4>(Pose3D::kQuaternion).norm();
     const Mat<3, 3, T> Rt = rotationMatrix<T>(q).transpose();
     const Vec<3, T> n = Rt.col(2);
     const Vec<3, T> C = Rt * Vec<3, T>(tree.template head<3>() - camera.template head<3>());
@@ -122,15 +121,15 @@ struct TreeWidth {
     return z;
   }
 
-  /// Prediction with the analytic Jacobians J_z_x (3x13) and J_z_l (3x4).
-  Vec<3> operator()(const Vec<13>& camera,
+  /// Prediction with the analytic Jacobians J_z_x (3x7) and J_z_l (3x4).
+  Vec<3> operator()(const Vec<7>& camera,
                     const Vec<4>& tree,
-                    JacobianRef<3, 13> J_z_x = {},
+                    JacobianRef<3, 7> J_z_x = {},
                     JacobianRef<3, 4> J_z_l = {}) const {
     const Vec<3> z = predict<double>(camera, tree);
     if (!J_z_x && !J_z_l) return z;
-    const double q_norm = camera.segment<4>(3).norm();
-    const Vec<4> q = camera.segment<4>(3) / q_norm;
+    const double q_norm = camera.segment<4>(Pose3D::kQuaternion).norm();
+    const Vec<4> q = camera.segment<4>(Pose3D::kQuaternion) / q_norm;
     const Mat<3, 3> Rt = rotationMatrix<double>(q).transpose();
     const Vec<3> delta = tree.head<3>() - camera.head<3>();
     const Vec<3> n = Rt.col(2);
@@ -178,28 +177,10 @@ struct TreeWidth {
     return z;
   }
 
-  /// d (R(q)^T v) / d q (3x4) at a unit quaternion q = (w, x, y, z), v held fixed, from the
-  /// extension R(q)^T v = v - 2 w (u x v) + 2 u x (u x v), u = (x, y, z). Off the unit sphere
-  /// this differs from other extensions only in the direction of q, which the normalization's
-  /// Jacobian removes.
-  static Mat<3, 4> rotateTransposedJacobian(const Vec<4>& q, const Vec<3>& v) {
-    const double w = q[0];
-    const Vec<3> u = q.tail<3>();
-    Mat<3, 3> v_cross;
-    v_cross << 0.0, -v[2], v[1],  //
-        v[2], 0.0, -v[0],         //
-        -v[1], v[0], 0.0;
-    Mat<3, 4> J;
-    J.col(0) = -2.0 * u.cross(v);
-    J.rightCols<3>() = 2.0 * w * v_cross + 2.0 * (u.dot(v) * Mat<3, 3>::Identity() +
-                                                  u * v.transpose() - 2.0 * v * u.transpose());
-    return J;
-  }
-
  private:
   template <typename T>
-  static void checkInputs(const Vec<13, T>& camera, const Vec<4, T>& tree) {
-    for (int i = 0; i < 13; ++i) {
+  static void checkInputs(const Vec<7, T>& camera, const Vec<4, T>& tree) {
+    for (int i = 0; i < 7; ++i) {
       if (!std::isfinite(scalarValue(camera[i])))
         fail(ErrorCode::kNonFinite, "TreeWidth: the camera state is not finite");
     }
@@ -213,7 +194,7 @@ struct TreeWidth {
       os << "TreeWidth: trunk radius " << r << " m must be > 0";
       fail(ErrorCode::kDegenerateGeometry, os.str());
     }
-    const double q_norm = std::sqrt(scalarValue(camera.template segment<4>(3).squaredNorm()));
+    const double q_norm = std::sqrt(scalarValue(camera.template segment<4>(Pose3D::kQuaternion).squaredNorm()));
     if (!(q_norm >= kMinQuaternionNorm)) {
       std::ostringstream os;
       os << "TreeWidth: camera orientation quaternion has norm " << q_norm;

@@ -52,6 +52,7 @@
 #include "sylva/core/jacobian_ref.hpp"
 #include "sylva/core/quaternion.hpp"
 #include "sylva/core/types.hpp"
+#include "sylva/motion/pose_3d.hpp"
 
 namespace sylva {
 
@@ -63,10 +64,20 @@ struct ConstantVelocity3D {
   static constexpr int kDim = 13;
   static constexpr int kControlDim = 0;
   static constexpr int kNoiseDim = 6;  ///< [linear acceleration (3), angular acceleration (3)]
-  static constexpr int kQuaternion = 3;  ///< index of q's w entry (OnManifold: the state on SO(3) x R^9)
+  static constexpr int kQuaternion = Pose3D::kQuaternion;  ///< index of q's w entry (OnManifold: the state on SO(3) x R^9)
   static constexpr const char* kName = "ConstantVelocity3D";
   using State = Vec<13>;
   using Control = Vec<0>;
+  using Pose = Pose3D;  ///< the pose view every camera model is written for
+
+  /// The pose [r_WC, q_WC] of a state, and its Jacobian [I 0].
+  static Vec<7> pose(const State& x, JacobianRef<7, 13> J = {}) {
+    if (J) {
+      (*J).setZero();
+      (*J).template leftCols<7>().setIdentity();
+    }
+    return x.head<7>();
+  }
 
   /// The motion with the noise input `n` (zero in the filter's mean prediction).
   template <typename T>

@@ -65,7 +65,7 @@ class TreeObserver {
   bool visible(const Vec<13>& x, const Tree& tree, Vec<3>& z_true, double& depth) const {
     if ((tree.base.head<2>() - x.head<2>()).norm() > options_.max_range_m) return false;
     try {
-      z_true = model_.predict<double>(x, tree.xyzr());
+      z_true = model_.predict<double>(Vec<7>(x.head<7>()), tree.xyzr());  // the pose [r_WC, q_WC]
     } catch (const Error&) {
       return false;
     }

@@ -4,7 +4,8 @@
 /// the equations read (multisensor thesis eq. 2.22-2.39): a dense n x n F, a dense m x n H,
 /// K = P H^T S^-1 and P = (I - K H) P; augmentation by the full Jacobian of eq. 2.36.
 /// It is O(n^3) per update and allocates freely: it exists to check `sylva::Ekf` against
-/// (tests) and to be the naive baseline it is timed against (bench/).
+/// (tests) and to be the naive baseline it is timed against (bench/). Models written for a
+/// pose view (`Pose2D`, `Pose3D`) see the robot through it, as in the filter.
 
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
@@ -45,8 +46,8 @@ struct DenseReferenceEkf {
     constexpr int L = Model::Landmark::kDim;
     Mat<M, kRobotDim> J_x;
     Mat<M, L> J_l;
-    const Vec<M> predicted = detail::evaluate(model, x.template head<kRobotDim>().eval(),
-                                              x.template segment<L>(offset).eval(), J_x, J_l);
+    const Vec<M> predicted = detail::evaluateOn<Robot>(model, x.template head<kRobotDim>().eval(),
+                                                       x.template segment<L>(offset).eval(), J_x, J_l);
     if (z_hat) *z_hat = predicted;
     Eigen::MatrixXd H = Eigen::MatrixXd::Zero(M, dim());
     H.leftCols(kRobotDim) = J_x;
@@ -81,7 +82,7 @@ struct DenseReferenceEkf {
     const int n = dim();
     Mat<L, kRobotDim> J_l_x;
     Mat<L, Z> J_l_z;
-    const Vec<L> l = inverse(x.template head<kRobotDim>().eval(), z, J_l_x, J_l_z);
+    const Vec<L> l = detail::initializeOn<Robot>(inverse, x.template head<kRobotDim>().eval(), z, J_l_x, J_l_z);
     Eigen::MatrixXd P_star = Eigen::MatrixXd::Zero(n + Z, n + Z);  // (2.34)
     P_star.topLeftCorner(n, n) = P;
     P_star.bottomRightCorner(Z, Z) = R;
@@ -127,7 +128,9 @@ struct DenseReferenceEkf {
     const int n = dim();
     Mat<T, kRobotDim> J_x;
     Mat<T, F> J_l;
-    const Vec<T> y = conversion(x.template head<kRobotDim>().eval(), x.template segment<F>(offset).eval(), J_x, J_l);
+    const Vec<F> from = x.template segment<F>(offset);
+    const Vec<T> y = detail::throughRobotView<detail::ConversionRobotT<Conversion, Robot>, Robot>(
+        x.template head<kRobotDim>().eval(), J_x, [&](const auto& view, auto& J_view) { return conversion(view, from, J_view, J_l); });
     // Full Jacobian of [state without block; y] w.r.t. the old state.
     Eigen::MatrixXd J = Eigen::MatrixXd::Zero(n - F + T, n);
     for (int i = 0, r = 0; i < n; ++i)
@@ -156,8 +159,10 @@ struct DenseReferenceEkf {
     Mat<T, kRobotDim> J_x;
     Mat<T, F> J_l;
     Mat<T, Z> J_z;
-    const Vec<T> y = conversion(x.template head<kRobotDim>().eval(), x.template segment<F>(offset).eval(), z,
-                                J_x, J_l, J_z);
+    const Vec<F> from = x.template segment<F>(offset);
+    const Vec<T> y = detail::throughRobotView<detail::ConversionRobotT<Conversion, Robot>, Robot>(
+        x.template head<kRobotDim>().eval(), J_x,
+        [&](const auto& view, auto& J_view) { return conversion(view, from, z, J_view, J_l, J_z); });
     // Full Jacobian of [state without block; y] w.r.t. [old state; z].
     Eigen::MatrixXd J = Eigen::MatrixXd::Zero(n - F + T, n + Z);
     for (int i = 0, r = 0; i < n; ++i)
