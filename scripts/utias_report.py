@@ -12,6 +12,10 @@ It replaces, in --doc, the text between `<!-- BEGIN generated: NAME -->` and
   loro     the leave-one-robot-out table and its summary against the targets (--loro),
   study    the settings of the grid that the procedure on all robots ranks first (--loro),
   results  the default configuration's scores per robot and against the targets (--run),
+  online   with --loro-online and --run-online: the same procedure with the gains estimated
+           online from an uncalibrated start (`utias --leave-one-out --online-gains --json`),
+           and the gains each robot's filter learns (`utias --online-gains --v-gain 1
+           --omega-gain 1 --omega-bias 0 --json`) beside the pooled calibration,
 and leaves everything else of the page as it is. Every figure comes from the JSON.
 """
 
@@ -159,6 +163,41 @@ def results_block(run):
     return lines
 
 
+def online_block(loro_online, loro_fixed, run_online):
+    s_on, s_fix = loro_online["held_out_summary"], loro_fixed["held_out_summary"]
+    lines = [f"Recording: `{loro_online['recording']}`. Leave-one-robot-out with the gains estimated online "
+             f"(uncalibrated start; delay, speed lost while turning and noise setting fitted on the other four "
+             f"robots as above): the held-out robots meet {s_on['targets_met']} of 6 targets, against "
+             f"{s_fix['targets_met']} of 6 with the fixed calibration.", "",
+             "| held out | setting p / r / b | training: targets met, smallest margin | held out: aligned RMS (m) "
+             "| Vicon-frame RMS (m) | landmark RMS (m) | mean NEES |",
+             "|---|---|---|---|---|---|---|"]
+    for r in loro_online["rotations"]:
+        t, h = r["training"], r["held_out"]
+        lines.append(f"| {r['held_out_robot']} | {setting(r['setting'])} | {t['targets_met']}, "
+                     f"{f(t['smallest_margin'])} | {f(h['aligned_rmse_m'])} | {f(h['vicon_rmse_m'])} | "
+                     f"{f(h['landmark_aligned_rmse_m'])} | {f(h['nees_mean'], 2)} |")
+    worst = {}
+    for key, field in (("aligned_rmse_worst_m", "aligned_rmse_m"), ("vicon_rmse_worst_m", "vicon_rmse_m"),
+                       ("landmark_aligned_rmse_worst_m", "landmark_aligned_rmse_m")):
+        worst[key] = max(loro_online["rotations"], key=lambda r: r["held_out"][field])["held_out_robot"]
+    lines += ["", "Against the targets (held-out robots, online gains):", ""] + targets_table(s_on, worst)
+    c = loro_fixed["all_robots"]["commands"]
+    lines += ["", f"What each robot's filter learns from its own data, starting at gain 1 and bias 0 "
+              f"(known correspondences, setting of the default; `k` is gain - 1), beside the pooled calibration "
+              f"fitted on the Vicon truth of all five robots (k_v {c['v_gain'] - 1:+.4f}, "
+              f"k_w {c['omega_gain'] - 1:+.4f}, b_w {c['omega_bias_radps']:+.4f} rad/s):", "",
+              "| robot | k_v | k_w | b_w (rad/s) | Vicon-frame RMS (m) | aligned RMS (m) | mean NEES |",
+              "|---|---|---|---|---|---|---|"]
+    for r in run_online["robots"]:
+        g = r["online_gains"]
+        sg = g["sigmas"]
+        lines.append(f"| {r['robot']} | {g['k_v']:+.4f} ± {sg[0]:.4f} | {g['k_w']:+.4f} ± {sg[1]:.4f} | "
+                     f"{g['b_w_radps']:+.4f} ± {sg[2]:.4f} | {f(r['known_rmse_m'])} | "
+                     f"{f(r['known_aligned_rmse_m'])} | {f(r['nees_mean'], 2)} |")
+    return lines
+
+
 def replace_block(text, name, lines):
     pattern = re.compile(rf"(<!-- BEGIN generated: {name} [^\n]*-->\n)(.*?)(<!-- END generated: {name} -->)", re.S)
     if not pattern.search(text):
@@ -171,6 +210,8 @@ def main():
     parser.add_argument("--run", required=True, help="`utias --json`")
     parser.add_argument("--loro", required=True, help="`utias --leave-one-out --json`")
     parser.add_argument("--doc", required=True, help="the page to update (docs/examples/utias.md)")
+    parser.add_argument("--loro-online", help="`utias --leave-one-out --online-gains --json`")
+    parser.add_argument("--run-online", help="`utias --online-gains --v-gain 1 --omega-gain 1 --omega-bias 0 --json`")
     args = parser.parse_args()
     run = json.load(open(args.run, encoding="utf-8"))
     loro = json.load(open(args.loro, encoding="utf-8"))
@@ -178,6 +219,9 @@ def main():
     text = replace_block(text, "loro", loro_block(loro))
     text = replace_block(text, "study", study_block(loro))
     text = replace_block(text, "results", results_block(run))
+    if args.loro_online and args.run_online:
+        text = replace_block(text, "online", online_block(json.load(open(args.loro_online, encoding="utf-8")), loro,
+                                                          json.load(open(args.run_online, encoding="utf-8"))))
     with open(args.doc, "w", encoding="utf-8") as out:
         out.write(text)
 

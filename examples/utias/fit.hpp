@@ -9,7 +9,9 @@
 //   2. Command calibration at that delay: the least squares of residuals.hpp
 //      (commandCalibration over 1 s windows), the normal equations pooled over the robots,
 //      each value rounded to 4 decimals (the precision --noise-study prints and
-//      noise_model.hpp writes).
+//      noise_model.hpp writes). With online gains only the speed lost while turning is
+//      taken from it; the gains and the turn-rate bias start at 1, 1 and 0 and the filter
+//      estimates them from the robot's own data.
 //   3. Noise setting: the known-correspondence run of every robot for each of the 36
 //      settings of the grid (selection.hpp) with that delay and calibration, and the declared
 //      rule of selection.hpp (most targets met, then the largest smallest margin).
@@ -75,21 +77,24 @@ inline CommandFit fitCommandModel(const RobotSet& robots, double window_s = 1.0)
   return fit;
 }
 
-/// `base` with the fitted delay and calibration.
+/// `base` with the fitted delay and calibration. With online gains (base.online_gains) the
+/// gains and the bias are the filter's to estimate: they start uncalibrated (1, 1, 0) and only
+/// the delay and the speed lost while turning are taken from the fit.
 inline NoiseConfig withCommandFit(NoiseConfig base, const CommandFit& fit) {
   base.command_delay_s = fit.delay_s;
-  base.v_gain = fit.v_gain;
   base.v_turn_loss = fit.v_turn_loss;
-  base.omega_gain = fit.omega_gain;
-  base.omega_bias = fit.omega_bias;
+  base.v_gain = base.online_gains ? 1.0 : fit.v_gain;
+  base.omega_gain = base.online_gains ? 1.0 : fit.omega_gain;
+  base.omega_bias = base.online_gains ? 0.0 : fit.omega_bias;
   return base;
 }
 
-/// Whether `c` holds exactly the delay and calibration of `fit`.
+/// Whether `c` holds exactly the delay and calibration of `fit` (as withCommandFit sets them).
 inline bool hasCommandFit(const NoiseConfig& c, const CommandFit& fit) {
-  return c.command_delay_s == fit.delay_s && c.v_gain == fit.v_gain &&
-         c.v_turn_loss == fit.v_turn_loss && c.omega_gain == fit.omega_gain &&
-         c.omega_bias == fit.omega_bias;
+  const NoiseConfig fitted = withCommandFit(c, fit);
+  return c.command_delay_s == fitted.command_delay_s && c.v_gain == fitted.v_gain &&
+         c.v_turn_loss == fitted.v_turn_loss && c.omega_gain == fitted.omega_gain &&
+         c.omega_bias == fitted.omega_bias;
 }
 
 inline RobotFigures figuresOf(const Scores& s) {

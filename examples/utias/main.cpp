@@ -115,14 +115,17 @@ json configJson(const utias::NoiseConfig& c) {
               {"jcbb_noise_scale", c.jcbb_noise_scale},
               {"new_landmark_probability", c.new_landmark_probability},
               {"candidate_range_m", c.candidate_range_m},
-              {"candidate_half_fov_rad", c.candidate_half_fov_rad}};
+              {"candidate_half_fov_rad", c.candidate_half_fov_rad},
+              {"online_gains", c.online_gains},
+              {"gain_sigma", {c.gain_sigma[0], c.gain_sigma[1], c.gain_sigma[2]}},
+              {"gain_walk", {c.gain_walk[0], c.gain_walk[1], c.gain_walk[2]}}};
 }
 
 json robotJson(const RobotReport& r) {
   const auto& k = r.known_scores;
   const auto& j = r.jcbb_scores;
   const auto& a = r.jcbb.counts;
-  return json{{"robot", r.robot},
+  json out{{"robot", r.robot},
               {"known_rmse_m", r4(k.rmse_m)},
               {"known_aligned_rmse_m", r4(k.aligned_rmse_m)},
               {"jcbb_aligned_rmse_m", r4(j.aligned_rmse_m)},
@@ -157,6 +160,12 @@ json robotJson(const RobotReport& r) {
               {"truth_ends_early", k.truthEndsEarly()},
               {"runtime_known_s", r4(r.known.runtime_s)},
               {"runtime_jcbb_s", r4(r.jcbb.runtime_s)}};
+  if (r.known.online_gains) {
+    // The known-correspondence filter's online gains [k_v, k_w, b_w] at the end, and sigmas.
+    out["online_gains"] = {{"k_v", r4(r.known.gains[0])}, {"k_w", r4(r.known.gains[1])}, {"b_w_radps", r4(r.known.gains[2])},
+                           {"sigmas", {r4(r.known.gain_sigmas[0]), r4(r.known.gain_sigmas[1]), r4(r.known.gain_sigmas[2])}}};
+  }
+  return out;
 }
 
 /// Every `stride`-th point of a path (and its last one).
@@ -548,6 +557,12 @@ int run(const Options& o) {
               << fixed(r.jcbb_scores.nees_mean, 2) << "\n";
   }
   for (const auto& r : reports)
+    if (r.known.online_gains)
+      std::cout << "robot " << r.robot << ": online gains at the end (known correspondences): k_v "
+                << fixed(r.known.gains[0], 4) << " +- " << fixed(r.known.gain_sigmas[0], 4) << ", k_w "
+                << fixed(r.known.gains[1], 4) << " +- " << fixed(r.known.gain_sigmas[1], 4) << ", b_w "
+                << fixed(r.known.gains[2], 4) << " +- " << fixed(r.known.gain_sigmas[2], 4) << " rad/s\n";
+  for (const auto& r : reports)
     if (const std::string note = coverageNote(r.robot, r.known_scores); !note.empty()) std::cout << "note: " << note << "\n";
   if (!o.svg_prefix.empty()) std::cout << "\npictures: " << o.svg_prefix << "_robot<N>.svg\n";
   return 0;
@@ -636,7 +651,23 @@ int main(int argc, char** argv) {
   app.add_option("--jcbb-gate", c.jcbb_gate_probability, "chi-square gate probability of JCBB")
       ->check(CLI::Range(0.5, 0.999999))
       ->capture_default_str();
+  app.add_flag("--online-gains", c.online_gains,
+               "estimate the speed gain, turn-rate gain and turn-rate bias online (Unicycle2DWithBias), starting "
+               "from --v-gain, --omega-gain and --omega-bias, instead of applying them as a fixed calibration");
+  std::vector<double> gain_sigma{c.gain_sigma[0], c.gain_sigma[1], c.gain_sigma[2]};
+  std::vector<double> gain_walk{c.gain_walk[0], c.gain_walk[1], c.gain_walk[2]};
+  app.add_option("--gain-sigma", gain_sigma, "online gains: prior sigmas of [k_v, k_w, b_w] (-, -, rad/s)")
+      ->expected(3)
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  app.add_option("--gain-walk", gain_walk,
+                 "online gains: random-walk densities of [k_v, k_w, b_w] (1/sqrt(s), 1/sqrt(s), rad/s/sqrt(s))")
+      ->expected(3)
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
   CLI11_PARSE(app, argc, argv);
+  c.gain_sigma = Vec<3>(gain_sigma[0], gain_sigma[1], gain_sigma[2]);
+  c.gain_walk = Vec<3>(gain_walk[0], gain_walk[1], gain_walk[2]);
   o.data_given = data_option->count() > 0;
   try {
     return run(o);

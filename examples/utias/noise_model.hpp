@@ -92,6 +92,14 @@ struct NoiseConfig {
   double new_landmark_probability = 0.999999;  ///< JCBB: unpaired and NIS above this to every candidate -> new landmark
   double candidate_range_m = 10.0;       ///< JCBB candidates: predicted range below this ...
   double candidate_half_fov_rad = 0.8;   ///< ... and |bearing| below this (camera: +-0.6 rad)
+  /// Online gains (Unicycle2DWithBias): the speed gain, the turn-rate gain and the turn-rate
+  /// bias are states of the filter, [k_v, k_w, b_w] with v = (1 + k_v) v_c, w = (1 + k_w) w_c
+  /// + b_w, instead of the fixed calibration. Their prior means are v_gain - 1, omega_gain - 1
+  /// and omega_bias (so --v-gain 1 --omega-gain 1 --omega-bias 0 starts them uncalibrated),
+  /// their prior sigmas gain_sigma, and each is a random walk of density gain_walk.
+  bool online_gains = false;
+  Vec<3> gain_sigma = Vec<3>(0.1, 0.1, 0.01);       ///< prior sigmas of [k_v, k_w, b_w] (-, -, rad/s)
+  Vec<3> gain_walk = Vec<3>(1e-3, 1e-3, 1e-4);      ///< random-walk densities (1/sqrt(s), 1/sqrt(s), rad/s/sqrt(s))
 
   /// The control noise of one prediction over dt > 0 seconds with command u (see above).
   sylva::Gaussian<2> controlNoise(const Vec<2>& u, double dt) const {
@@ -106,6 +114,16 @@ struct NoiseConfig {
     const bool stopped = logged[0] == 0.0 && logged[1] == 0.0;  // a stopped robot does not drift
     return Vec<2>(v, stopped ? 0.0 : omega_gain * logged[1] + omega_bias);
   }
+
+  /// Online gains: the command handed to Unicycle2DWithBias, with only the speed lost while
+  /// turning taken off (the gains and the bias are the filter's states).
+  Vec<2> filterCommand(const Vec<2>& logged) const {
+    const double v = logged[0] > 0.0 ? std::max(0.0, logged[0] - v_turn_loss * std::abs(logged[1])) : logged[0];
+    return Vec<2>(v, logged[1]);
+  }
+
+  /// Online gains: the prior mean of [k_v, k_w, b_w].
+  Vec<3> gainPrior() const { return Vec<3>(v_gain - 1.0, omega_gain - 1.0, omega_bias); }
 
   /// The noise of a reading at measured range `range_m`.
   sylva::Gaussian<2> measurementNoise(double range_m) const {

@@ -1,6 +1,8 @@
 #pragma once
 // One EKF-SLAM run over one robot's data: sylva::Ekf<Unicycle2D, Point2> with RangeBearing
-// and InverseRangeBearing, stepped from event to event.
+// and InverseRangeBearing, stepped from event to event; with online gains (NoiseConfig::
+// online_gains) sylva::Ekf<Unicycle2DWithBias, Point2>, whose speed gain, turn-rate gain and
+// turn-rate bias are states.
 //
 // Events are the odometry commands and the measurement times, merged in time order. A
 // command logged at time t takes effect at t + command_delay_s (the robots follow their
@@ -31,6 +33,7 @@
 #include <limits>
 #include <map>
 #include <optional>
+#include <type_traits>
 #include <vector>
 
 #include <sylva/association/jcbb.hpp>
@@ -41,6 +44,7 @@
 #include <sylva/landmarks/point2.hpp>
 #include <sylva/measurements/range_bearing.hpp>
 #include <sylva/motion/unicycle_2d.hpp>
+#include <sylva/motion/unicycle_2d_with_bias.hpp>
 
 #include "noise_model.hpp"
 
@@ -49,6 +53,7 @@ namespace utias {
 using sylva::Id;
 using sylva::Mat;
 using Filter = sylva::Ekf<sylva::Unicycle2D, sylva::Point2>;
+using GainFilter = sylva::Ekf<sylva::Unicycle2DWithBias, sylva::Point2>;
 
 enum class Association { kKnown, kJcbb };
 
@@ -85,16 +90,20 @@ struct RunResult {
   std::vector<MappedLandmark> landmarks;
   AssociationCounts counts;
   double runtime_s = 0.0;
+  bool online_gains = false;
+  Vec<3> gains = Vec<3>::Zero();        ///< online gains: [k_v, k_w, b_w] at the end
+  Vec<3> gain_sigmas = Vec<3>::Zero();  ///< ... and their sigmas
 };
 
 namespace detail {
 
 /// Mapped landmarks whose predicted reading is within the configured reach (JCBB candidates).
-inline std::vector<Id> candidates(const Filter& ekf, const NoiseConfig& c) {
+template <typename AnyFilter>
+std::vector<Id> candidates(const AnyFilter& ekf, const NoiseConfig& c) {
   std::vector<Id> out;
-  const Vec<3> x = ekf.robotMean();
+  const Vec<3> x = ekf.robotMean().template head<3>();
   for (const sylva::LandmarkSlot& s : ekf.slots()) {
-    const Vec<2> d = ekf.landmarkMean<sylva::Point2>(s.id) - x.head<2>();
+    const Vec<2> d = ekf.template landmarkMean<sylva::Point2>(s.id) - x.head<2>();
     const double range = d.norm();
     if (range > c.candidate_range_m || range < 1e-6) continue;
     if (std::abs(sylva::wrapAngle(std::atan2(d.y(), d.x()) - x[2])) > c.candidate_half_fov_rad) continue;
@@ -105,14 +114,14 @@ inline std::vector<Id> candidates(const Filter& ekf, const NoiseConfig& c) {
 
 }  // namespace detail
 
-/// Runs the filter over `robot`'s data up to `max_time_s` (relative time; <= 0: all).
-/// `cluster_of` (subject -> cluster), when given, is used only to count JCBB's wrong pairings
-/// that stay inside a cluster of landmarks.
-inline RunResult runSlam(const sylva::datasets::UtiasRobotData& robot,
-                         const NoiseConfig& config,
-                         Association association,
-                         double max_time_s = 0.0,
-                         const std::map<int, int>* cluster_of = nullptr) {
+/// runSlam (below) with the filter type chosen.
+template <typename AnyFilter>
+RunResult runSlamWith(const sylva::datasets::UtiasRobotData& robot,
+                      const NoiseConfig& config,
+                      Association association,
+                      double max_time_s,
+                      const std::map<int, int>* cluster_of) {
+  constexpr bool kOnline = std::is_same_v<AnyFilter, GainFilter>;
   using sylva::datasets::UtiasObservation;
   const auto start_clock = std::chrono::steady_clock::now();
   const sylva::RangeBearing model;
@@ -123,11 +132,24 @@ inline RunResult runSlam(const sylva::datasets::UtiasRobotData& robot,
 
   const auto& first = robot.groundtruth.front();
   const Mat<3, 3> P0 = config.initial_sigma.cwiseAbs2().asDiagonal();
-  Filter ekf(first.pose, P0);
+  const auto initialFilter = [&] {
+    if constexpr (kOnline) {
+      Vec<6> x0;
+      x0 << first.pose, config.gainPrior();
+      Mat<6, 6> P = Mat<6, 6>::Zero();
+      P.topLeftCorner<3, 3>() = P0;
+      P.bottomRightCorner<3, 3>() = config.gain_sigma.cwiseAbs2().asDiagonal();
+      return AnyFilter(x0, P);
+    } else {
+      return AnyFilter(first.pose, P0);
+    }
+  };
+  AnyFilter ekf = initialFilter();
   ekf.reserve(2 * 32);
   Vec<3> dead = first.pose;
   double t = first.time_s;
-  Vec<2> u = Vec<2>::Zero();
+  Vec<2> u = Vec<2>::Zero();       // the command the filter predicts with
+  Vec<2> u_dead = Vec<2>::Zero();  // the calibrated command of the dead reckoning
   Vec<2> jitter = Vec<2>::Zero();  // pending pose effect of command changes (see command_jitter_s)
   std::map<Id, int> subject_of;  // filter id -> label subject
   std::map<Id, double> last_fused;  // filter id -> time of its last fused reading
@@ -160,12 +182,21 @@ inline RunResult runSlam(const sylva::datasets::UtiasRobotData& robot,
         Q = sylva::Gaussian<2>::variances(Q.covariance().diagonal() + jitter.cwiseAbs2() / (dt * dt));
         jitter.setZero();
       }
-      ekf.predict(u, te - t, Q);
-      dead = unicycle(dead, u, te - t);
+      if constexpr (kOnline) {
+        // The gains are random walks of density gain_walk: Var(e) = q / dt (Unicycle2DWithBias).
+        Vec<5> variances;
+        variances << Q.covariance().diagonal(), config.gain_walk.cwiseAbs2() / (te - t);
+        ekf.predict(u, te - t, sylva::Gaussian<5>::variances(variances));
+      } else {
+        ekf.predict(u, te - t, Q);
+      }
+      dead = unicycle(dead, u_dead, te - t);
       t = te;
     }
     if (command) {
-      const Vec<2> next = config.effectiveCommand(cmds[i++].u);
+      const Vec<2> logged = cmds[i++].u;
+      u_dead = config.effectiveCommand(logged);
+      const Vec<2> next = kOnline ? config.filterCommand(logged) : u_dead;
       jitter += (next - u).cwiseAbs() * config.command_jitter_s;
       u = next;
     } else {
@@ -252,14 +283,32 @@ inline RunResult runSlam(const sylva::datasets::UtiasRobotData& robot,
         }
       }
     }
-    out.samples.push_back({t, ekf.robotMean(), ekf.robotCovariance()});
+    out.samples.push_back({t, ekf.robotMean().template head<3>(), ekf.robotCovariance().template topLeftCorner<3, 3>()});
     out.dead_reckoning.push_back(dead);
   }
   for (const sylva::LandmarkSlot& s : ekf.slots())
-    out.landmarks.push_back({s.id, subject_of.at(s.id), ekf.landmarkMean<sylva::Point2>(s.id),
-                             ekf.landmarkCovariance<sylva::Point2>(s.id)});
+    out.landmarks.push_back({s.id, subject_of.at(s.id), ekf.template landmarkMean<sylva::Point2>(s.id),
+                             ekf.template landmarkCovariance<sylva::Point2>(s.id)});
+  if constexpr (kOnline) {
+    out.online_gains = true;
+    out.gains = ekf.robotMean().template tail<3>();
+    out.gain_sigmas = ekf.robotCovariance().template bottomRightCorner<3, 3>().diagonal().cwiseSqrt();
+  }
   out.runtime_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_clock).count();
   return out;
+}
+
+/// Runs the filter over `robot`'s data up to `max_time_s` (relative time; <= 0: all), with
+/// the fixed calibration or, when config.online_gains, the gains as states. `cluster_of`
+/// (subject -> cluster), when given, is used only to count JCBB's wrong pairings that stay
+/// inside a cluster of landmarks.
+inline RunResult runSlam(const sylva::datasets::UtiasRobotData& robot,
+                         const NoiseConfig& config,
+                         Association association,
+                         double max_time_s = 0.0,
+                         const std::map<int, int>* cluster_of = nullptr) {
+  return config.online_gains ? runSlamWith<GainFilter>(robot, config, association, max_time_s, cluster_of)
+                             : runSlamWith<Filter>(robot, config, association, max_time_s, cluster_of);
 }
 
 }  // namespace utias

@@ -174,3 +174,48 @@ TEST_CASE("UTIAS command fit on all five robots of Dataset 7 is the compiled def
   CHECK(fit.omega_gain == compiled.omega_gain);
   CHECK(fit.omega_bias == compiled.omega_bias);
 }
+
+TEST_CASE("UTIAS online gains: the fit leaves them uncalibrated, and on Dataset 7 each robot learns them",
+          "[utias][data]") {
+  utias::NoiseConfig online;
+  online.online_gains = true;
+  utias::CommandFit fit;
+  fit.delay_s = 0.15;
+  fit.v_gain = 1.05;
+  fit.v_turn_loss = 0.09;
+  fit.omega_gain = 0.93;
+  fit.omega_bias = -0.003;
+  const utias::NoiseConfig fitted = utias::withCommandFit(online, fit);
+  CHECK(fitted.command_delay_s == 0.15);
+  CHECK(fitted.v_turn_loss == 0.09);
+  CHECK(fitted.gainPrior() == Vec<3>::Zero());
+  CHECK(utias::hasCommandFit(fitted, fit));
+  CHECK_FALSE(utias::hasCommandFit(utias::withCommandFit(utias::NoiseConfig{}, fit), utias::CommandFit{}));
+
+  const std::string folder = SYLVA_DATA_DIR "/utias-mrclam/MRCLAM_Dataset7";
+  if (!std::filesystem::exists(folder + "/Barcodes.dat")) {
+    WARN("skipped: UTIAS MRCLAM Dataset 7 not found in " << folder);
+    SUCCEED("skipped");
+    return;
+  }
+  // Starting at gain 1 and bias 0, every robot's filter learns its gains from its landmark
+  // readings alone: each final sigma is below the prior's, and the speed and turn-rate gains
+  // lie within 3 of their sigmas of the pooled calibration that the Vicon truth gives (the
+  // robots' own calibrations differ from the pooled one by much less than those sigmas).
+  const auto data = sylva::datasets::loadUtiasMrclam(folder);
+  const utias::NoiseConfig calibrated;
+  utias::NoiseConfig uncalibrated = calibrated;
+  uncalibrated.online_gains = true;
+  uncalibrated.v_gain = 1.0;
+  uncalibrated.omega_gain = 1.0;
+  uncalibrated.omega_bias = 0.0;
+  const Vec<3> pooled(calibrated.v_gain - 1.0, calibrated.omega_gain - 1.0, calibrated.omega_bias);
+  for (const auto& robot : data.robots) {
+    INFO("robot " << robot.robot);
+    const utias::RunResult run = utias::runSlam(robot, uncalibrated, utias::Association::kKnown);
+    REQUIRE(run.online_gains);
+    INFO("gains " << run.gains.transpose() << " +- " << run.gain_sigmas.transpose());
+    for (int i = 0; i < 3; ++i) CHECK(run.gain_sigmas[i] < uncalibrated.gain_sigma[i]);
+    for (int i = 0; i < 2; ++i) CHECK(std::abs(run.gains[i] - pooled[i]) < 3.0 * run.gain_sigmas[i]);
+  }
+}
