@@ -63,12 +63,12 @@ echo "==> wrote docs/results-real-data.md" >&2
 echo "==> utias --leave-one-out" >&2
 "${build_dir}/examples/utias/utias" --data "${data_dir}/utias-mrclam/MRCLAM_Dataset7" --leave-one-out --json \
   > "${build_dir}/utias_loro.json"
-echo "==> utias with online gains" >&2
-"${build_dir}/examples/utias/utias" --data "${data_dir}/utias-mrclam/MRCLAM_Dataset7" --leave-one-out --online-gains \
-  --json > "${build_dir}/utias_loro_online.json"
-"${build_dir}/examples/utias/utias" --data "${data_dir}/utias-mrclam/MRCLAM_Dataset7" --online-gains --v-gain 1 \
-  --omega-gain 1 --omega-bias 0 --json > "${build_dir}/utias_online.json"
+echo "==> utias with the fixed calibration, and with gains learned from scratch" >&2
+"${build_dir}/examples/utias/utias" --data "${data_dir}/utias-mrclam/MRCLAM_Dataset7" --leave-one-out --gains fixed \
+  --json > "${build_dir}/utias_loro_fixed.json"
+"${build_dir}/examples/utias/utias" --data "${data_dir}/utias-mrclam/MRCLAM_Dataset7" --v-gain 1 --omega-gain 1 \
+  --omega-bias 0 --gain-sigma 0.1 0.1 0.01 --json > "${build_dir}/utias_scratch.json"
 python3 "${root}/scripts/utias_report.py" --run "${build_dir}/utias.json" --loro "${build_dir}/utias_loro.json" \
-  --loro-online "${build_dir}/utias_loro_online.json" --run-online "${build_dir}/utias_online.json" \
+  --loro-fixed "${build_dir}/utias_loro_fixed.json" --run-scratch "${build_dir}/utias_scratch.json" \
   --doc "${root}/docs/examples/utias.md"
 echo "==> updated the generated tables of docs/examples/utias.md" >&2

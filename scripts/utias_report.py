@@ -12,10 +12,10 @@ It replaces, in --doc, the text between `<!-- BEGIN generated: NAME -->` and
   loro     the leave-one-robot-out table and its summary against the targets (--loro),
   study    the settings of the grid that the procedure on all robots ranks first (--loro),
   results  the default configuration's scores per robot and against the targets (--run),
-  online   with --loro-online and --run-online: the same procedure with the gains estimated
-           online from an uncalibrated start (`utias --leave-one-out --online-gains --json`),
-           and the gains each robot's filter learns (`utias --online-gains --v-gain 1
-           --omega-gain 1 --omega-bias 0 --json`) beside the pooled calibration,
+  gains    with --loro-fixed and --run-scratch: the same procedure with the fixed calibration
+           (`utias --leave-one-out --gains fixed --json`), and the gains each robot's filter
+           learns from an uncalibrated start (`utias --v-gain 1 --omega-gain 1 --omega-bias 0
+           --gain-sigma 0.1 0.1 0.01 --json`) beside the pooled calibration,
 and leaves everything else of the page as it is. Every figure comes from the JSON.
 """
 
@@ -163,16 +163,16 @@ def results_block(run):
     return lines
 
 
-def online_block(loro_online, loro_fixed, run_online):
-    s_on, s_fix = loro_online["held_out_summary"], loro_fixed["held_out_summary"]
-    lines = [f"Recording: `{loro_online['recording']}`. Leave-one-robot-out with the gains estimated online "
-             f"(uncalibrated start; delay, speed lost while turning and noise setting fitted on the other four "
-             f"robots as above): the held-out robots meet {s_on['targets_met']} of 6 targets, against "
-             f"{s_fix['targets_met']} of 6 with the fixed calibration.", "",
+def gains_block(loro_fixed, loro_online, run_scratch):
+    s_fix, s_on = loro_fixed["held_out_summary"], loro_online["held_out_summary"]
+    lines = [f"Recording: `{loro_fixed['recording']}`. The same leave-one-robot-out procedure with the fixed "
+             f"calibration (`--gains fixed`, the default before online gains): the held-out robots meet "
+             f"{s_fix['targets_met']} of 6 targets, against {s_on['targets_met']} of 6 with online gains "
+             f"(the default, table above).", "",
              "| held out | setting p / r / b | training: targets met, smallest margin | held out: aligned RMS (m) "
              "| Vicon-frame RMS (m) | landmark RMS (m) | mean NEES |",
              "|---|---|---|---|---|---|---|"]
-    for r in loro_online["rotations"]:
+    for r in loro_fixed["rotations"]:
         t, h = r["training"], r["held_out"]
         lines.append(f"| {r['held_out_robot']} | {setting(r['setting'])} | {t['targets_met']}, "
                      f"{f(t['smallest_margin'])} | {f(h['aligned_rmse_m'])} | {f(h['vicon_rmse_m'])} | "
@@ -180,16 +180,19 @@ def online_block(loro_online, loro_fixed, run_online):
     worst = {}
     for key, field in (("aligned_rmse_worst_m", "aligned_rmse_m"), ("vicon_rmse_worst_m", "vicon_rmse_m"),
                        ("landmark_aligned_rmse_worst_m", "landmark_aligned_rmse_m")):
-        worst[key] = max(loro_online["rotations"], key=lambda r: r["held_out"][field])["held_out_robot"]
-    lines += ["", "Against the targets (held-out robots, online gains):", ""] + targets_table(s_on, worst)
-    c = loro_fixed["all_robots"]["commands"]
-    lines += ["", f"What each robot's filter learns from its own data, starting at gain 1 and bias 0 "
-              f"(known correspondences, setting of the default; `k` is gain - 1), beside the pooled calibration "
-              f"fitted on the Vicon truth of all five robots (k_v {c['v_gain'] - 1:+.4f}, "
-              f"k_w {c['omega_gain'] - 1:+.4f}, b_w {c['omega_bias_radps']:+.4f} rad/s):", "",
+        worst[key] = max(loro_fixed["rotations"], key=lambda r: r["held_out"][field])["held_out_robot"]
+    lines += ["", "Against the targets (held-out robots, fixed calibration):", ""] + targets_table(s_fix, worst)
+    c = loro_online["all_robots"]["commands"]
+    lines += ["", f"What each robot's filter learns from its own landmark readings when it starts uncalibrated "
+              f"(gain 1, bias 0, prior sigmas {run_scratch['config']['gain_sigma'][0]:g}, "
+              f"{run_scratch['config']['gain_sigma'][1]:g}, {run_scratch['config']['gain_sigma'][2]:g} rad/s; known "
+              f"correspondences; `k` is gain - 1), beside the pooled calibration fitted on the Vicon truth of all "
+              f"five robots (k_v {c['v_gain'] - 1:+.4f}, k_w {c['omega_gain'] - 1:+.4f}, "
+              f"b_w {c['omega_bias_radps']:+.4f} rad/s; the robots' own calibrations spread by "
+              f"{c['spread'][0]:.4f}, {c['spread'][1]:.4f}, {c['spread'][2]:.4f}):", "",
               "| robot | k_v | k_w | b_w (rad/s) | Vicon-frame RMS (m) | aligned RMS (m) | mean NEES |",
               "|---|---|---|---|---|---|---|"]
-    for r in run_online["robots"]:
+    for r in run_scratch["robots"]:
         g = r["online_gains"]
         sg = g["sigmas"]
         lines.append(f"| {r['robot']} | {g['k_v']:+.4f} ± {sg[0]:.4f} | {g['k_w']:+.4f} ± {sg[1]:.4f} | "
@@ -210,8 +213,9 @@ def main():
     parser.add_argument("--run", required=True, help="`utias --json`")
     parser.add_argument("--loro", required=True, help="`utias --leave-one-out --json`")
     parser.add_argument("--doc", required=True, help="the page to update (docs/examples/utias.md)")
-    parser.add_argument("--loro-online", help="`utias --leave-one-out --online-gains --json`")
-    parser.add_argument("--run-online", help="`utias --online-gains --v-gain 1 --omega-gain 1 --omega-bias 0 --json`")
+    parser.add_argument("--loro-fixed", help="`utias --leave-one-out --gains fixed --json`")
+    parser.add_argument("--run-scratch",
+                        help="`utias --v-gain 1 --omega-gain 1 --omega-bias 0 --gain-sigma 0.1 0.1 0.01 --json`")
     args = parser.parse_args()
     run = json.load(open(args.run, encoding="utf-8"))
     loro = json.load(open(args.loro, encoding="utf-8"))
@@ -219,9 +223,9 @@ def main():
     text = replace_block(text, "loro", loro_block(loro))
     text = replace_block(text, "study", study_block(loro))
     text = replace_block(text, "results", results_block(run))
-    if args.loro_online and args.run_online:
-        text = replace_block(text, "online", online_block(json.load(open(args.loro_online, encoding="utf-8")), loro,
-                                                          json.load(open(args.run_online, encoding="utf-8"))))
+    if args.loro_fixed and args.run_scratch:
+        text = replace_block(text, "gains", gains_block(json.load(open(args.loro_fixed, encoding="utf-8")), loro,
+                                                        json.load(open(args.run_scratch, encoding="utf-8"))))
     with open(args.doc, "w", encoding="utf-8") as out:
         out.write(text)
 

@@ -9,9 +9,9 @@
 //   2. Command calibration at that delay: the least squares of residuals.hpp
 //      (commandCalibration over 1 s windows), the normal equations pooled over the robots,
 //      each value rounded to 4 decimals (the precision --noise-study prints and
-//      noise_model.hpp writes). With online gains only the speed lost while turning is
-//      taken from it; the gains and the turn-rate bias start at 1, 1 and 0 and the filter
-//      estimates them from the robot's own data.
+//      noise_model.hpp writes). With online gains the calibration is the prior mean of the
+//      gains the filter estimates from the robot's own data, and the spread of the robots'
+//      own calibrations (largest minus smallest, each robot fitted alone) their prior sigma.
 //   3. Noise setting: the known-correspondence run of every robot for each of the 36
 //      settings of the grid (selection.hpp) with that delay and calibration, and the declared
 //      rule of selection.hpp (most targets met, then the largest smallest margin).
@@ -44,6 +44,10 @@ struct CommandFit {
   double omega_gain = 1.0;
   double omega_bias = 0.0;  ///< rad/s
   long windows = 0;         ///< 1 s windows behind the calibration
+  /// The spread (largest minus smallest) of [v_gain, omega_gain, omega_bias] calibrated on
+  /// each robot alone at the pooled delay; zero for one robot. With online gains it is the
+  /// prior sigma of the gains: how much one robot differs from the pooled calibration.
+  Vec<3> spread = Vec<3>::Zero();
 };
 
 inline double roundTo4(double v) { return std::round(v * 1e4) / 1e4; }
@@ -74,18 +78,34 @@ inline CommandFit fitCommandModel(const RobotSet& robots, double window_s = 1.0)
   fit.v_gain = roundTo4(distance[0]);
   fit.v_turn_loss = roundTo4(distance[1]);
   fit.windows = pooled.windows;
+  if (robots.size() >= 2) {
+    Vec<3> lowest = Vec<3>::Constant(std::numeric_limits<double>::infinity());
+    Vec<3> highest = -lowest;
+    for (const auto* r : robots) {
+      const CommandCalibration own = commandCalibration(*r, window_s, fit.delay_s);
+      if (own.windows == 0) continue;
+      const Eigen::Vector2d t = own.turn(window_s), d = own.distance();
+      const Vec<3> values(d[0], t[0], t[1]);
+      lowest = lowest.cwiseMin(values);
+      highest = highest.cwiseMax(values);
+    }
+    if (lowest.allFinite()) fit.spread = Vec<3>(roundTo4(highest[0] - lowest[0]), roundTo4(highest[1] - lowest[1]),
+                                                roundTo4(highest[2] - lowest[2]));
+  }
   return fit;
 }
 
 /// `base` with the fitted delay and calibration. With online gains (base.online_gains) the
-/// gains and the bias are the filter's to estimate: they start uncalibrated (1, 1, 0) and only
-/// the delay and the speed lost while turning are taken from the fit.
+/// calibration is the prior mean of the gains the filter estimates, and the spread of the
+/// robots' own calibrations (when the fit saw two robots or more) their prior sigma, with a
+/// floor of 1e-4.
 inline NoiseConfig withCommandFit(NoiseConfig base, const CommandFit& fit) {
   base.command_delay_s = fit.delay_s;
   base.v_turn_loss = fit.v_turn_loss;
-  base.v_gain = base.online_gains ? 1.0 : fit.v_gain;
-  base.omega_gain = base.online_gains ? 1.0 : fit.omega_gain;
-  base.omega_bias = base.online_gains ? 0.0 : fit.omega_bias;
+  base.v_gain = fit.v_gain;
+  base.omega_gain = fit.omega_gain;
+  base.omega_bias = fit.omega_bias;
+  if (base.online_gains && fit.spread.maxCoeff() > 0.0) base.gain_sigma = fit.spread.cwiseMax(1e-4);
   return base;
 }
 
@@ -94,7 +114,7 @@ inline bool hasCommandFit(const NoiseConfig& c, const CommandFit& fit) {
   const NoiseConfig fitted = withCommandFit(c, fit);
   return c.command_delay_s == fitted.command_delay_s && c.v_gain == fitted.v_gain &&
          c.v_turn_loss == fitted.v_turn_loss && c.omega_gain == fitted.omega_gain &&
-         c.omega_bias == fitted.omega_bias;
+         c.omega_bias == fitted.omega_bias && c.gain_sigma == fitted.gain_sigma;
 }
 
 inline RobotFigures figuresOf(const Scores& s) {

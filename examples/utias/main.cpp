@@ -322,7 +322,8 @@ json settingJson(const utias::GridSetting& g) {
 
 json commandFitJson(const utias::CommandFit& c) {
   return json{{"command_delay_s", c.delay_s},   {"v_gain", c.v_gain},         {"v_turn_loss_m_per_rad", c.v_turn_loss},
-              {"omega_gain", c.omega_gain},     {"omega_bias_radps", c.omega_bias}, {"windows", c.windows}};
+              {"omega_gain", c.omega_gain},     {"omega_bias_radps", c.omega_bias}, {"windows", c.windows},
+              {"spread", {c.spread[0], c.spread[1], c.spread[2]}}};
 }
 
 std::string settingText(const utias::GridSetting& g) {
@@ -453,7 +454,8 @@ int leaveOneOut(const Options& o, const sylva::datasets::UtiasDataset& data) {
   std::cout << "the procedure on all " << data.robots.size() << " robots (the default's rule): delay "
             << fixed(c.delay_s, 2) << " s, v_gain " << fixed(c.v_gain, 4) << ", v_turn_loss " << fixed(c.v_turn_loss, 4)
             << " m/rad, omega_gain " << fixed(c.omega_gain, 4) << ", omega_bias " << fixed(c.omega_bias, 4)
-            << " rad/s, setting " << settingText(all.setting) << " (on them: " << summaryText(all.grid[all.chosen])
+            << " rad/s, spread of the robots' own calibrations " << fixed(c.spread[0], 4) << " / " << fixed(c.spread[1], 4)
+            << " / " << fixed(c.spread[2], 4) << ", setting " << settingText(all.setting) << " (on them: " << summaryText(all.grid[all.chosen])
             << ")\n  the compiled default (noise_model.hpp) " << (default_matches ? "is" : "is NOT") << " this\n";
   for (const auto& n : notes) std::cout << "note: " << n << "\n";
   return 0;
@@ -651,9 +653,13 @@ int main(int argc, char** argv) {
   app.add_option("--jcbb-gate", c.jcbb_gate_probability, "chi-square gate probability of JCBB")
       ->check(CLI::Range(0.5, 0.999999))
       ->capture_default_str();
-  app.add_flag("--online-gains", c.online_gains,
-               "estimate the speed gain, turn-rate gain and turn-rate bias online (Unicycle2DWithBias), starting "
-               "from --v-gain, --omega-gain and --omega-bias, instead of applying them as a fixed calibration");
+  std::string gains = c.online_gains ? "online" : "fixed";
+  app.add_option("--gains", gains,
+                 "online: the speed gain, turn-rate gain and turn-rate bias are states of the filter "
+                 "(Unicycle2DWithBias) with prior means --v-gain - 1, --omega-gain - 1, --omega-bias and sigmas "
+                 "--gain-sigma; fixed: they are applied as a fixed calibration")
+      ->check(CLI::IsMember({"online", "fixed"}))
+      ->capture_default_str();
   std::vector<double> gain_sigma{c.gain_sigma[0], c.gain_sigma[1], c.gain_sigma[2]};
   std::vector<double> gain_walk{c.gain_walk[0], c.gain_walk[1], c.gain_walk[2]};
   app.add_option("--gain-sigma", gain_sigma, "online gains: prior sigmas of [k_v, k_w, b_w] (-, -, rad/s)")
@@ -666,6 +672,7 @@ int main(int argc, char** argv) {
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   CLI11_PARSE(app, argc, argv);
+  c.online_gains = gains == "online";
   c.gain_sigma = Vec<3>(gain_sigma[0], gain_sigma[1], gain_sigma[2]);
   c.gain_walk = Vec<3>(gain_walk[0], gain_walk[1], gain_walk[2]);
   o.data_given = data_option->count() > 0;

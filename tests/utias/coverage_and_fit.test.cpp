@@ -173,9 +173,11 @@ TEST_CASE("UTIAS command fit on all five robots of Dataset 7 is the compiled def
   CHECK(fit.v_turn_loss == compiled.v_turn_loss);
   CHECK(fit.omega_gain == compiled.omega_gain);
   CHECK(fit.omega_bias == compiled.omega_bias);
+  CHECK(compiled.online_gains);
+  CHECK(fit.spread == compiled.gain_sigma);
 }
 
-TEST_CASE("UTIAS online gains: the fit leaves them uncalibrated, and on Dataset 7 each robot learns them",
+TEST_CASE("UTIAS online gains: the fit sets their prior, and on Dataset 7 each robot learns them from scratch",
           "[utias][data]") {
   utias::NoiseConfig online;
   online.online_gains = true;
@@ -185,12 +187,17 @@ TEST_CASE("UTIAS online gains: the fit leaves them uncalibrated, and on Dataset 
   fit.v_turn_loss = 0.09;
   fit.omega_gain = 0.93;
   fit.omega_bias = -0.003;
+  fit.spread = Vec<3>(0.01, 0.02, 0.0);
   const utias::NoiseConfig fitted = utias::withCommandFit(online, fit);
   CHECK(fitted.command_delay_s == 0.15);
   CHECK(fitted.v_turn_loss == 0.09);
-  CHECK(fitted.gainPrior() == Vec<3>::Zero());
+  CHECK((fitted.gainPrior() - Vec<3>(0.05, -0.07, -0.003)).norm() < 1e-15);
+  CHECK(fitted.gain_sigma == Vec<3>(0.01, 0.02, 1e-4));  // the spread, with its floor
   CHECK(utias::hasCommandFit(fitted, fit));
   CHECK_FALSE(utias::hasCommandFit(utias::withCommandFit(utias::NoiseConfig{}, fit), utias::CommandFit{}));
+  utias::NoiseConfig fixed = online;
+  fixed.online_gains = false;
+  CHECK(utias::withCommandFit(fixed, fit).gain_sigma == fixed.gain_sigma);
 
   const std::string folder = SYLVA_DATA_DIR "/utias-mrclam/MRCLAM_Dataset7";
   if (!std::filesystem::exists(folder + "/Barcodes.dat")) {
@@ -209,6 +216,7 @@ TEST_CASE("UTIAS online gains: the fit leaves them uncalibrated, and on Dataset 
   uncalibrated.v_gain = 1.0;
   uncalibrated.omega_gain = 1.0;
   uncalibrated.omega_bias = 0.0;
+  uncalibrated.gain_sigma = Vec<3>(0.1, 0.1, 0.01);  // a tenth of the command either way
   const Vec<3> pooled(calibrated.v_gain - 1.0, calibrated.omega_gain - 1.0, calibrated.omega_bias);
   for (const auto& robot : data.robots) {
     INFO("robot " << robot.robot);
