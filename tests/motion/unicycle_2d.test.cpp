@@ -41,3 +41,29 @@ TEST_CASE("Unicycle2D Jacobians match numerical differentiation", "[motion][jaco
     CHECK(report.ok);
   }
 }
+
+namespace unity_motion_unicycle_2d_checker {
+
+/// A unicycle whose mean prediction drifts 1 mm from its own propagate (what the filter runs
+/// would then not be what the Jacobians describe).
+struct DriftingUnicycle : sylva::Unicycle2D {
+  State operator()(const State& x, const Control& u, double dt, sylva::JacobianRef<3, 3> J_x = {},
+                   sylva::JacobianRef<3, 2> J_n = {}) const {
+    State next = Unicycle2D::operator()(x, u, dt, J_x, J_n);
+    next[0] += 1e-3;
+    return next;
+  }
+};
+
+}  // namespace unity_motion_unicycle_2d_checker
+
+TEST_CASE("checkMotionJacobians flags a mean prediction that is not the model's propagate", "[motion][jacobian]") {
+  const sylva::Vec<3> x(1.0, 2.0, 0.3);
+  const sylva::Vec<2> u(1.0, 0.2);
+  const auto good = sylva::testing::checkMotionJacobians(sylva::Unicycle2D{}, x, u, 0.1);
+  CHECK(good.ok);
+  const auto bad = sylva::testing::checkMotionJacobians(unity_motion_unicycle_2d_checker::DriftingUnicycle{}, x, u, 0.1);
+  INFO(bad.message());
+  CHECK_FALSE(bad.ok);
+  CHECK(bad.block == "f - propagate");
+}

@@ -29,38 +29,19 @@
 
 namespace sylva {
 
-struct Ackermann2DWithBias {
-  static constexpr int kDim = 5;         ///< [x, y, theta, k (speed scale error), b (steering offset, rad)]
+struct Ackermann2DWithBias : Pose2DWithExtras<5> {
+  // State [x, y, theta, k (speed scale error), b (steering offset, rad)]; kDim, State,
+  // Pose, pose(), normalize() and difference() come from Pose2DWithExtras.
   static constexpr int kControlDim = 2;  ///< [v_e (m/s), alpha (rad)], as measured
   static constexpr int kNoiseDim = 4;    ///< [n_v, n_alpha, w_k, w_b]
   static constexpr int kPlanarPosition = 0;
   static constexpr int kPlanarHeading = 2;
   static constexpr const char* kName = "Ackermann2DWithBias";
-  using State = Vec<5>;
   using Control = Vec<2>;
-  using Pose = Pose2D;  ///< the pose view every planar sensor model is written for
 
   explicit Ackermann2DWithBias(double wheelbase_m, double encoder_offset_m = 0.0)
       : car_(wheelbase_m, encoder_offset_m) {}
   const Ackermann2D& car() const { return car_; }
-
-  /// The pose [x, y, theta] of a state, and its Jacobian [I 0].
-  static Vec<3> pose(const State& x, JacobianRef<3, 5> J = {}) {
-    if (J) {
-      (*J).setZero();
-      (*J).template leftCols<3>().setIdentity();
-    }
-    return x.head<3>();
-  }
-
-  static void normalize(Eigen::Ref<State> x) { x[2] = wrapAngle(x[2]); }
-
-  /// a - b with the heading wrapped.
-  static State difference(const State& a, const State& b) {
-    State d = a - b;
-    d[2] = wrapAngle(d[2]);
-    return d;
-  }
 
   /// Propagates `x` over `dt` under the measured control `u`.
   State operator()(const State& x,

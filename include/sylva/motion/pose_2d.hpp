@@ -9,6 +9,7 @@
 #include <Eigen/Core>
 
 #include "sylva/core/angles.hpp"
+#include "sylva/core/jacobian_ref.hpp"
 #include "sylva/core/types.hpp"
 
 namespace sylva {
@@ -37,6 +38,36 @@ struct Pose2D {
   }
 
   /// Difference of two states with the angle wrapped, for errors and NEES.
+  static State difference(const State& a, const State& b) {
+    State d = a - b;
+    d[2] = wrapAngle(d[2]);
+    return d;
+  }
+};
+
+/// What a planar robot whose state is the pose followed by more states, [x, y, theta, ...],
+/// shares (the base of `Ackermann2DWithBias` and `Unicycle2DWithBias`): its pose view
+/// (`using Pose = Pose2D`, `pose(x, J)`, the first three entries, so every planar sensor
+/// model serves it), theta kept wrapped, and differences with the angle wrapped.
+template <int Dim>
+struct Pose2DWithExtras {
+  static_assert(Dim > 3, "a state with extras holds more than the pose");
+  static constexpr int kDim = Dim;
+  using State = Vec<Dim>;
+  using Pose = Pose2D;  ///< the pose view every planar sensor model is written for
+
+  /// The pose [x, y, theta] of a state, and its Jacobian [I 0].
+  static Vec<3> pose(const State& x, JacobianRef<3, Dim> J = {}) {
+    if (J) {
+      (*J).setZero();
+      (*J).template leftCols<3>().setIdentity();
+    }
+    return x.template head<3>();
+  }
+
+  static void normalize(Eigen::Ref<State> x) { x[2] = wrapAngle(x[2]); }
+
+  /// a - b with the heading wrapped.
   static State difference(const State& a, const State& b) {
     State d = a - b;
     d[2] = wrapAngle(d[2]);

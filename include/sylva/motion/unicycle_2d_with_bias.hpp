@@ -34,32 +34,13 @@
 
 namespace sylva {
 
-struct Unicycle2DWithBias {
-  static constexpr int kDim = 6;         ///< [x, y, theta, k_v, k_w, b_w]
+struct Unicycle2DWithBias : Pose2DWithExtras<6> {
+  // State [x, y, theta, k_v, k_w, b_w]; kDim, State, Pose, pose(), normalize() and
+  // difference() come from Pose2DWithExtras.
   static constexpr int kControlDim = 2;  ///< [v_c (m/s), w_c (rad/s)], as commanded
   static constexpr int kNoiseDim = 5;    ///< [n_v, n_w, e_v, e_w, e_b]
   static constexpr const char* kName = "Unicycle2DWithBias";
-  using State = Vec<6>;
   using Control = Vec<2>;
-  using Pose = Pose2D;  ///< the pose view every planar sensor model is written for
-
-  /// The pose [x, y, theta] of a state, and its Jacobian [I 0].
-  static Vec<3> pose(const State& x, JacobianRef<3, 6> J = {}) {
-    if (J) {
-      (*J).setZero();
-      (*J).template leftCols<3>().setIdentity();
-    }
-    return x.head<3>();
-  }
-
-  static void normalize(Eigen::Ref<State> x) { x[2] = wrapAngle(x[2]); }
-
-  /// a - b with the heading wrapped.
-  static State difference(const State& a, const State& b) {
-    State d = a - b;
-    d[2] = wrapAngle(d[2]);
-    return d;
-  }
 
   /// 1 while the robot is commanded to move, 0 at a standstill command.
   static double moving(const Control& u) { return u[0] != 0.0 || u[1] != 0.0 ? 1.0 : 0.0; }

@@ -111,7 +111,9 @@ JacobianReport checkInverseJacobians(const Inverse& inverse,
 }
 
 /// Motion model: J_x and J_n (w.r.t. the noise input), against central differences of the
-/// model's `propagate<double>(x, u, n, dt)` at n = 0.
+/// model's `propagate<double>(x, u, n, dt)` at n = 0; and the mean prediction operator()
+/// against propagate at n = 0 (block "f - propagate"), so that the Jacobians checked are those
+/// of the function the filter runs.
 template <typename Motion>
 JacobianReport checkMotionJacobians(const Motion& motion,
                                     const Vec<Motion::kDim>& x,
@@ -132,6 +134,9 @@ JacobianReport checkMotionJacobians(const Motion& motion,
   JacobianReport report;
   report.compare("J_x", J_x, N_x, tolerance);
   report.compare("J_n", J_n, N_n, tolerance);
+  const Vec<D> mean = motion(x, u, dt);
+  report.compare("f - propagate", diff(mean, Vec<D>(motion.template propagate<double>(x, u, zero, dt))), Vec<D>::Zero(),
+                 tolerance);
   return report;
 }
 
