@@ -17,8 +17,9 @@
 // with the true initial velocity known to 0.1 m/s. Trees start as inverse-depth points
 // (Civera et al. 2008), become XYZ when their linearity index drops below 0.1 and, in the
 // run with the tree-width sensor, XYZ-R (radius from InverseTreeWidth) once their position
-// sigma is below 0.1 m, after which TreeWidth updates use the width too. The run without
-// the sensor keeps them XYZ and uses only (u, v). Observations whose NIS exceeds the
+// sigma is below --xyzr-sigma (TreeSlamOptions::tree_position_sigma_m, default 0.3 m), after
+// which TreeWidth updates use the width too. The run without the sensor keeps them XYZ and
+// uses only (u, v). Observations whose NIS exceeds the
 // chi-square gate of probability --gate (0.99999) are skipped. The third run
 // ("width_first_sight") starts each tree as InverseDepthRadius, fuses [u, v, w] from the first
 // frame and converts it straight to XYZ-R by the linearity rule.

@@ -1,5 +1,6 @@
 // ConstantVelocity3D: the constant-velocity camera motion with quaternion renormalization.
 
+#include <sylva/diff/numeric_diff.hpp>
 #include <sylva/filter/ekf.hpp>
 #include <sylva/motion/constant_velocity_3d.hpp>
 #include <sylva/sim/forest_trajectory.hpp>
@@ -110,6 +111,29 @@ TEST_CASE("ConstantVelocity3D with the velocity in the camera frame follows an a
   Vec<13> y = world_state;
   for (int k = 0; k < steps; ++k) y = ConstantVelocity3D{}(y, Vec<0>(), dt);
   CHECK(y[0] == Approx(speed * steps * dt));
+}
+
+TEST_CASE("ConstantVelocity3D::normalizationJacobian is the derivative of normalize", "[motion][jacobian]") {
+  // Checked against central differences of normalize itself (the dense reference filter calls
+  // normalizationJacobian too, so agreeing with it proves nothing), at a unit quaternion, at
+  // norms far from 1 and with a negative w.
+  const auto normalized = [](const sylva::Vec<13>& x) {
+    sylva::Vec<13> y = x;
+    sylva::ConstantVelocity3D::normalize(y);
+    return y;
+  };
+  for (const double scale : {1.0, 0.05, 3.0, 40.0}) {
+    sylva::Vec<13> x;
+    x << 1.0, -2.0, 0.5, sylva::Vec<4>(0.3, -0.5, 0.7, -0.41).normalized() * scale, 0.3, -0.2, 0.1, 0.05, 0.1, -0.2;
+    if (scale == 40.0) x.segment<4>(3) *= -1.0;
+    INFO("quaternion norm " << x.segment<4>(3).norm());
+    const sylva::Mat<13, 13> analytic = sylva::ConstantVelocity3D::normalizationJacobian(x);
+    const sylva::Mat<13, 13> numeric = sylva::numericJacobian<13, 13>(normalized, x, 1e-7);
+    const double tolerance = 1e-7 * std::max(1.0, analytic.cwiseAbs().maxCoeff());
+    CHECK((analytic - numeric).cwiseAbs().maxCoeff() < tolerance);
+    // The normalization removes the radial direction: N q = 0 in the quaternion block.
+    CHECK((analytic.block<4, 4>(3, 3) * x.segment<4>(3)).norm() < 1e-12 * analytic.norm() * x.segment<4>(3).norm());
+  }
 }
 
 TEST_CASE("ConstantVelocity3D rejects a zero quaternion", "[motion][errors]") {
