@@ -1,10 +1,11 @@
 // RangeBearingDiameter and InverseRangeBearingDiameter (TreeXYR landmarks): Jacobians against
-// central differences, with and without a sensor mount, at ordinary and awkward geometry;
+// central differences and automatic differentiation, with and without a sensor mount, at ordinary and awkward geometry;
 // inverse then forward is the identity; bad input is refused and leaves the filter unchanged.
 
 #include <cmath>
 #include <limits>
 
+#include <sylva/diff/auto_diff.hpp>
 #include <sylva/filter/ekf.hpp>
 #include <sylva/measurements/range_bearing_diameter.hpp>
 #include <sylva/motion/ackermann_2d.hpp>
@@ -52,6 +53,13 @@ TEST_CASE("RangeBearingDiameter: prediction and Jacobians", "[measurements][jaco
       const auto report = testing::checkMeasurementJacobians(model, g.robot, g.tree, 1e-6);
       INFO(report.message());
       CHECK(report.ok);
+      // And against forward-mode automatic differentiation of predict<T>, exact to round-off.
+      Mat<3, 3> J_x, A_x, J_l, A_l;
+      model(g.robot, g.tree, J_x, J_l);
+      const AutoDiff<RangeBearingDiameter> automatic(model);
+      automatic(g.robot, g.tree, A_x, A_l);
+      CHECK((J_x - A_x).cwiseAbs().maxCoeff() <= 1e-11 * std::max(1.0, J_x.cwiseAbs().maxCoeff()));
+      CHECK((J_l - A_l).cwiseAbs().maxCoeff() <= 1e-11 * std::max(1.0, J_l.cwiseAbs().maxCoeff()));
       const auto inv = testing::checkInverseJacobians(inverse, g.robot, z, 1e-6);
       INFO(inv.message());
       CHECK(inv.ok);

@@ -10,6 +10,7 @@
 #include <sylva/testing/check_jacobians.hpp>
 
 #include "error_helpers.hpp"
+#include "motion_autodiff.hpp"
 #include "sylva_catch.hpp"
 
 namespace unity_motion_ackermann_2d {
@@ -44,7 +45,7 @@ TEST_CASE("Ackermann2D: axle speed and turn rate of the encoder-offset model", "
   CHECK((car - unicycle).norm() < 1e-14);
 }
 
-TEST_CASE("Ackermann2D Jacobians match numerical differentiation", "[motion][jacobian][ackermann]") {
+TEST_CASE("Ackermann2D Jacobians match numerical and automatic differentiation", "[motion][jacobian][ackermann]") {
   struct Case {
     const char* name;
     Vec<3> x;
@@ -67,6 +68,7 @@ TEST_CASE("Ackermann2D Jacobians match numerical differentiation", "[motion][jac
       const auto report = testing::checkMotionJacobians(car, c.x, c.u, c.dt, 1e-6);
       INFO(report.message());
       CHECK(report.ok);
+      sylva_test::requireMotionMatchesAutoDiff(car, c.x, c.u, c.dt);
     }
   }
 }

@@ -9,6 +9,7 @@
 #include <sylva/motion/odometry_2d.hpp>
 #include <sylva/testing/check_jacobians.hpp>
 
+#include "motion_autodiff.hpp"
 #include "sylva_catch.hpp"
 
 using namespace sylva;
@@ -45,7 +46,7 @@ TEST_CASE("Odometry2D composes the pose with the increment", "[motion]") {
   CHECK((motion(pose, Vec<3>::Zero(), 1.0) - pose).norm() < 1e-15);
 }
 
-TEST_CASE("Odometry2D Jacobians match numerical differentiation", "[motion][jacobian]") {
+TEST_CASE("Odometry2D Jacobians match numerical and automatic differentiation", "[motion][jacobian]") {
   struct Case {
     const char* name;
     Vec<3> x;
@@ -63,6 +64,7 @@ TEST_CASE("Odometry2D Jacobians match numerical differentiation", "[motion][jaco
     const auto report = testing::checkMotionJacobians(Odometry2D{}, c.x, c.u, 1.0, 1e-6);
     INFO(report.message());
     CHECK(report.ok);
+    sylva_test::requireMotionMatchesAutoDiff(Odometry2D{}, c.x, c.u, 1.0);
   }
 }
 

@@ -4,6 +4,7 @@
 #include <sylva/motion/unicycle_2d.hpp>
 #include <sylva/testing/check_jacobians.hpp>
 
+#include "motion_autodiff.hpp"
 #include "sylva_catch.hpp"
 
 using namespace sylva;
@@ -19,7 +20,7 @@ TEST_CASE("Unicycle2D follows eq. 2.12-2.14", "[motion]") {
   CHECK(wrapped[2] == Approx(3.2 - 2 * kPi));
 }
 
-TEST_CASE("Unicycle2D Jacobians match numerical differentiation", "[motion][jacobian]") {
+TEST_CASE("Unicycle2D Jacobians match numerical and automatic differentiation", "[motion][jacobian]") {
   struct Case {
     const char* name;
     Vec<3> x;
@@ -39,6 +40,7 @@ TEST_CASE("Unicycle2D Jacobians match numerical differentiation", "[motion][jaco
     const auto report = testing::checkMotionJacobians(Unicycle2D{}, c.x, c.u, c.dt, 1e-6);
     INFO(report.message());
     CHECK(report.ok);
+    sylva_test::requireMotionMatchesAutoDiff(Unicycle2D{}, c.x, c.u, c.dt);
   }
 }
 
