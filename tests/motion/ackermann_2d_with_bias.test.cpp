@@ -5,14 +5,13 @@
 
 #include <cmath>
 
-#include <unsupported/Eigen/AutoDiff>
-
 #include <sylva/diff/numeric_diff.hpp>
 #include <sylva/motion/ackermann_2d.hpp>
 #include <sylva/motion/ackermann_2d_with_bias.hpp>
 #include <sylva/testing/check_jacobians.hpp>
 
 #include "error_helpers.hpp"
+#include "motion_autodiff.hpp"
 #include "sylva_catch.hpp"
 
 namespace unity_motion_ackermann_2d_with_bias {
@@ -56,24 +55,12 @@ TEST_CASE("Ackermann2DWithBias: the pose moves as Ackermann2D under the correcte
 
 TEST_CASE("Ackermann2DWithBias Jacobians match numerical and automatic differentiation",
           "[motion][jacobian][ackermann]") {
-  using Dual = Eigen::AutoDiffScalar<Vec<9>>;  // derivatives w.r.t. [x (5), n (4)]
   for (const Case& c : kCases) {
     INFO(c.name);
     const auto report = testing::checkMotionJacobians(kBiasedCar, c.x, c.u, c.dt, 1e-6);
     INFO(report.message());
     CHECK(report.ok);
-    Mat<5, 5> J_x;
-    Mat<5, 4> J_n;
-    kBiasedCar(c.x, c.u, c.dt, J_x, J_n);
-    Vec<5, Dual> x;
-    Vec<4, Dual> n;
-    for (int i = 0; i < 5; ++i) x[i] = Dual(c.x[i], 9, i);
-    for (int i = 0; i < 4; ++i) n[i] = Dual(0.0, 9, 5 + i);
-    const Vec<5, Dual> next = kBiasedCar.propagate<Dual>(x, Vec<2, Dual>(Dual(c.u[0]), Dual(c.u[1])), n, c.dt);
-    Mat<5, 9> automatic;
-    for (int r = 0; r < 5; ++r) automatic.row(r) = next[r].derivatives().transpose();
-    CHECK((J_x - automatic.leftCols<5>()).cwiseAbs().maxCoeff() < 1e-12);
-    CHECK((J_n - automatic.rightCols<4>()).cwiseAbs().maxCoeff() < 1e-12);
+    sylva_test::requireMotionMatchesAutoDiff(kBiasedCar, c.x, c.u, c.dt);
   }
 }
 

@@ -9,8 +9,6 @@
 #include <random>
 #include <vector>
 
-#include <unsupported/Eigen/AutoDiff>
-
 #include <sylva/consistency/chi_square.hpp>
 #include <sylva/diff/numeric_diff.hpp>
 #include <sylva/filter/ekf.hpp>
@@ -20,6 +18,7 @@
 #include <sylva/motion/unicycle_2d_with_bias.hpp>
 #include <sylva/testing/check_jacobians.hpp>
 
+#include "motion_autodiff.hpp"
 #include "sylva_catch.hpp"
 
 namespace unity_motion_unicycle_2d_with_bias {
@@ -65,25 +64,12 @@ TEST_CASE("Unicycle2DWithBias: the pose moves as Unicycle2D under the actual mot
 
 TEST_CASE("Unicycle2DWithBias Jacobians match numerical and automatic differentiation",
           "[motion][jacobian][unicycle]") {
-  using Dual = Eigen::AutoDiffScalar<Vec<11>>;  // derivatives w.r.t. [x (6), n (5)]
   for (const UnicycleCase& c : kUnicycleCases) {
     INFO(c.name);
     const auto report = testing::checkMotionJacobians(kBiasedUnicycle, c.x, c.u, c.dt, 1e-6);
     INFO(report.message());
     CHECK(report.ok);
-    Mat<6, 6> J_x;
-    Mat<6, 5> J_n;
-    kBiasedUnicycle(c.x, c.u, c.dt, J_x, J_n);
-    Vec<6, Dual> x;
-    Vec<5, Dual> n;
-    for (int i = 0; i < 6; ++i) x[i] = Dual(c.x[i], 11, i);
-    for (int i = 0; i < 5; ++i) n[i] = Dual(0.0, 11, 6 + i);
-    const Vec<6, Dual> next = kBiasedUnicycle.propagate<Dual>(x, Vec<2, Dual>(Dual(c.u[0]), Dual(c.u[1])), n, c.dt);
-    Mat<6, 11> automatic;
-    for (int r = 0; r < 6; ++r) automatic.row(r) = next[r].derivatives().transpose();
-    CHECK((J_x - automatic.leftCols<6>()).cwiseAbs().maxCoeff() < 1e-12);
-    CHECK((J_n - automatic.rightCols<5>()).cwiseAbs().maxCoeff() < 1e-12);
-    CHECK((kBiasedUnicycle(c.x, c.u, c.dt) - Vec<6>(kBiasedUnicycle.propagate<double>(c.x, c.u, Vec<5>::Zero(), c.dt))).norm() < 1e-15);
+    sylva_test::requireMotionMatchesAutoDiff(kBiasedUnicycle, c.x, c.u, c.dt);
   }
 }
 
