@@ -21,6 +21,7 @@
 #include <sylva/landmarks/tree_xyzr.hpp>
 #include <sylva/measurements/pinhole_camera.hpp>
 #include <sylva/measurements/tree_width.hpp>
+#include <sylva/motion/constant_velocity_3d.hpp>
 #include <sylva/sim/random.hpp>
 #include <sylva/testing/check_jacobians.hpp>
 
