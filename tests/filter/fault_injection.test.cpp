@@ -149,32 +149,23 @@ TEST_CASE("fault injection: every form of update leaves the filter as it was whe
 TEST_CASE("fault injection: the monocular filter's updates and reparametrizations", "[filter][faults]") {
   using Mono = Ekf<OnManifold<ConstantVelocity3D>, InverseDepth, Point3, TreeXYZR>;
   const sylva_test::MonocularRig rig;
-  // (References, not a structured binding: C++17 lambdas cannot capture those.)
-  const auto& camera = rig.camera;
-  const auto& x0 = rig.x0;
-  const auto& id_model = rig.id_model;
-  const auto& xyz = rig.xyz_model;
-  const auto& width = rig.width_model;
-  const auto& init = rig.init;
-  const auto& pixel = rig.pixel;
-  const auto& pixel_width = rig.pixel_width;
-  Mono ekf(x0, Mat<12, 12>::Identity() * 1e-4);
+  Mono ekf(rig.x0, Mat<12, 12>::Identity() * 1e-4);
   std::vector<Vec<4>> trees;
   for (int i = 0; i < 6; ++i) trees.emplace_back(6.0 + 0.8 * i, -2.0 + 0.7 * i, 0.0, 0.2 + 0.01 * i);
-  for (int i = 0; i < 6; ++i) ekf.add(i, init, init.measurement(xyz(ConstantVelocity3D::pose(x0), Vec<3>(trees[i].head<3>()))), init.noise(pixel));
+  for (int i = 0; i < 6; ++i) ekf.add(i, rig.init, rig.init.measurement(rig.xyz_model(ConstantVelocity3D::pose(rig.x0), Vec<3>(trees[i].head<3>()))), rig.init.noise(rig.pixel));
   ekf.reparametrize(4, InverseDepthToPoint3<ConstantVelocity3D>{});
   everyAllocationFails<Mono>(ekf, [&](Mono& f) { f.reparametrize(1, InverseDepthToPoint3<ConstantVelocity3D>{}); },
                              [](const Mono& f) { return f.holds<InverseDepth>(1); });
-  everyAllocationFails<Mono>(ekf, [&](Mono& f) { f.reparametrize(4, InverseTreeWidth(camera), width(ConstantVelocity3D::pose(x0), trees[4]), pixel_width); },
+  everyAllocationFails<Mono>(ekf, [&](Mono& f) { f.reparametrize(4, InverseTreeWidth(rig.camera), rig.width_model(ConstantVelocity3D::pose(rig.x0), trees[4]), rig.pixel_width); },
                              [](const Mono& f) { return f.holds<Point3>(4); });
   for (const LinearizationPoint point : {LinearizationPoint::kCurrentEstimate, LinearizationPoint::kObservabilityConstrained}) {
     Mono moded = ekf;
     moded.setLinearizationPoint(point);
     everyAllocationFails<Mono>(moded, [&](Mono& f) {
-      f.update(id_model, 2, id_model(ConstantVelocity3D::pose(f.robotMean()), f.landmarkMean<InverseDepth>(2)) + Vec<2>(0.4, -0.3), pixel);
+      f.update(rig.id_model, 2, rig.id_model(ConstantVelocity3D::pose(f.robotMean()), f.landmarkMean<InverseDepth>(2)) + Vec<2>(0.4, -0.3), rig.pixel);
     });
     everyAllocationFails<Mono>(moded, [&](Mono& f) {
-      f.update(xyz, 4, xyz(ConstantVelocity3D::pose(f.robotMean()), f.landmarkMean<Point3>(4)) + Vec<2>(-0.3, 0.2), pixel);
+      f.update(rig.xyz_model, 4, rig.xyz_model(ConstantVelocity3D::pose(f.robotMean()), f.landmarkMean<Point3>(4)) + Vec<2>(-0.3, 0.2), rig.pixel);
     });
   }
   CHECK(g_other_eigen_asserts.load() == 0);

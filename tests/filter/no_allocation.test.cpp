@@ -68,41 +68,32 @@ TEMPLATE_TEST_CASE("the monocular tree filter's predict and updates do not alloc
                    ConstantVelocity3D, OnManifold<ConstantVelocity3D>) {
   using Filter = Ekf<TestType, InverseDepth, Point3, TreeXYZR>;
   const sylva_test::MonocularRig rig;
-  // (References, not a structured binding: C++17 lambdas cannot capture those.)
-  const auto& camera = rig.camera;
-  const auto& x0 = rig.x0;
-  const auto& id_model = rig.id_model;
-  const auto& xyz_model = rig.xyz_model;
-  const auto& width_model = rig.width_model;
-  const auto& init = rig.init;
-  const auto& pixel = rig.pixel;
-  const auto& pixel_width = rig.pixel_width;
   const Mat<Filter::kRobotDim, Filter::kRobotDim> P0 = Mat<Filter::kRobotDim, Filter::kRobotDim>::Identity() * 1e-4;
-  Filter ekf(x0, P0);
+  Filter ekf(rig.x0, P0);
   // 30 trees 6-15 m ahead: ids 0-9 stay inverse depth, 10-19 become XYZ, 20-29 XYZ-R.
   std::vector<Vec<4>> trees;
   for (int i = 0; i < 30; ++i) trees.emplace_back(6.0 + 0.3 * i, -3.0 + 0.2 * i, 0.0, 0.2 + 0.005 * i);
   for (int i = 0; i < 30; ++i) {
-    const Vec<2> z = xyz_model(ConstantVelocity3D::pose(x0), Vec<3>(trees[i].head<3>()));
-    ekf.add(i, init, init.measurement(z), init.noise(pixel));
+    const Vec<2> z = rig.xyz_model(ConstantVelocity3D::pose(rig.x0), Vec<3>(trees[i].head<3>()));
+    ekf.add(i, rig.init, rig.init.measurement(z), rig.init.noise(rig.pixel));
   }
   for (int i = 10; i < 30; ++i) ekf.reparametrize(i, InverseDepthToPoint3<ConstantVelocity3D>{});
-  for (int i = 20; i < 30; ++i) ekf.reparametrize(i, InverseTreeWidth(camera), width_model(ConstantVelocity3D::pose(x0), trees[i]), pixel_width);
+  for (int i = 20; i < 30; ++i) ekf.reparametrize(i, InverseTreeWidth(rig.camera), rig.width_model(ConstantVelocity3D::pose(rig.x0), trees[i]), rig.pixel_width);
   const auto q = Gaussian<6>::sigmas(Vec<6>::Constant(0.5));
   // Warm-up: sizes the workspaces.
   ekf.predict(Vec<0>(), 0.05, q);
-  ekf.update(xyz_model, 10, xyz_model(ConstantVelocity3D::pose(ekf.robotMean()), ekf.template landmarkMean<Point3>(10)), pixel);
-  ekf.update(width_model, 20, width_model(ConstantVelocity3D::pose(ekf.robotMean()), ekf.template landmarkMean<TreeXYZR>(20)), pixel_width);
+  ekf.update(rig.xyz_model, 10, rig.xyz_model(ConstantVelocity3D::pose(ekf.robotMean()), ekf.template landmarkMean<Point3>(10)), rig.pixel);
+  ekf.update(rig.width_model, 20, rig.width_model(ConstantVelocity3D::pose(ekf.robotMean()), ekf.template landmarkMean<TreeXYZR>(20)), rig.pixel_width);
 
   const auto allocationsOfSteps = [&] {
     const long before = g_allocations.load();
     Eigen::internal::set_is_malloc_allowed(false);
     for (int step = 0; step < 10; ++step) {
       ekf.predict(Vec<0>(), 0.05, q);
-      ekf.update(id_model, 3, id_model(ConstantVelocity3D::pose(ekf.robotMean()), ekf.template landmarkMean<InverseDepth>(3)) + Vec<2>(0.3, -0.2), pixel);
-      ekf.update(xyz_model, 15, xyz_model(ConstantVelocity3D::pose(ekf.robotMean()), ekf.template landmarkMean<Point3>(15)) + Vec<2>(-0.3, 0.2), pixel);
-      ekf.update(width_model, 25,
-                 width_model(ConstantVelocity3D::pose(ekf.robotMean()), ekf.template landmarkMean<TreeXYZR>(25)) + Vec<3>(0.2, 0.1, -0.2), pixel_width);
+      ekf.update(rig.id_model, 3, rig.id_model(ConstantVelocity3D::pose(ekf.robotMean()), ekf.template landmarkMean<InverseDepth>(3)) + Vec<2>(0.3, -0.2), rig.pixel);
+      ekf.update(rig.xyz_model, 15, rig.xyz_model(ConstantVelocity3D::pose(ekf.robotMean()), ekf.template landmarkMean<Point3>(15)) + Vec<2>(-0.3, 0.2), rig.pixel);
+      ekf.update(rig.width_model, 25,
+                 rig.width_model(ConstantVelocity3D::pose(ekf.robotMean()), ekf.template landmarkMean<TreeXYZR>(25)) + Vec<3>(0.2, 0.1, -0.2), rig.pixel_width);
     }
     Eigen::internal::set_is_malloc_allowed(true);
     return g_allocations.load() - before;
@@ -110,7 +101,7 @@ TEMPLATE_TEST_CASE("the monocular tree filter's predict and updates do not alloc
   CHECK(allocationsOfSteps() == 0);
   // The observability-constrained transport has a workspace of its own: one warm-up.
   ekf.setLinearizationPoint(LinearizationPoint::kObservabilityConstrained);
-  ekf.update(xyz_model, 10, xyz_model(ConstantVelocity3D::pose(ekf.robotMean()), ekf.template landmarkMean<Point3>(10)), pixel);
+  ekf.update(rig.xyz_model, 10, rig.xyz_model(ConstantVelocity3D::pose(ekf.robotMean()), ekf.template landmarkMean<Point3>(10)), rig.pixel);
   CHECK(allocationsOfSteps() == 0);
   CHECK(g_eigen_assert_failures.load() == 0);
   CHECK(ekf.template holds<TreeXYZR>(25));

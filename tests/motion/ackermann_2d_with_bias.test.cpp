@@ -57,20 +57,12 @@ TEST_CASE("Ackermann2DWithBias Jacobians match numerical and automatic different
           "[motion][jacobian][ackermann]") {
   for (const Case& c : kCases) {
     INFO(c.name);
-    const auto report = testing::checkMotionJacobians(kBiasedCar, c.x, c.u, c.dt, 1e-6);
-    INFO(report.message());
-    CHECK(report.ok);
-    sylva_test::requireMotionMatchesAutoDiff(kBiasedCar, c.x, c.u, c.dt);
+    sylva_test::requireMotionJacobians(kBiasedCar, c.x, c.u, c.dt);
   }
 }
 
-TEST_CASE("Ackermann2DWithBias: the pose view and its Jacobian", "[motion][ackermann]") {
-  const Vec<5> x = kCases[0].x;
-  Mat<3, 5> J;
-  const Vec<3> pose = Ackermann2DWithBias::pose(x, J);
-  CHECK(pose == x.head<3>());
-  const Mat<3, 5> numeric = numericJacobian<3, 5>([](const Vec<5>& y) { return Ackermann2DWithBias::pose(y); }, x);
-  CHECK((J - numeric).cwiseAbs().maxCoeff() < 1e-9);
+TEST_CASE("Ackermann2DWithBias: the pose view and its Jacobian", "[motion]") {
+  sylva_test::requirePlanarPoseView<Ackermann2DWithBias>(kCases[0].x);
 }
 
 TEST_CASE("Ackermann2DWithBias refuses a corrected steering outside the car's domain", "[motion][errors][ackermann]") {

@@ -7,6 +7,8 @@
 #include <unsupported/Eigen/AutoDiff>
 
 #include <sylva/core/types.hpp>
+#include <sylva/diff/numeric_diff.hpp>
+#include <sylva/testing/check_jacobians.hpp>
 
 #include "sylva_catch.hpp"
 
@@ -38,6 +40,32 @@ void requireMotionMatchesAutoDiff(const Motion& motion,
                         << "\nautodiff\n" << automatic.template rightCols<N>());
   CHECK((J_x - automatic.template leftCols<D>()).cwiseAbs().maxCoeff() <= 1e-12 * scale);
   CHECK((J_n - automatic.template rightCols<N>()).cwiseAbs().maxCoeff() <= 1e-12 * scale);
+}
+
+/// Both checks of a motion model's Jacobians: central differences (checkMotionJacobians, which
+/// also compares operator() with propagate) and automatic differentiation.
+template <typename Motion>
+void requireMotionJacobians(const Motion& motion,
+                            const sylva::Vec<Motion::kDim>& x,
+                            const sylva::Vec<Motion::kControlDim>& u,
+                            double dt) {
+  const auto report = sylva::testing::checkMotionJacobians(motion, x, u, dt, 1e-6);
+  INFO(report.message());
+  CHECK(report.ok);
+  requireMotionMatchesAutoDiff(motion, x, u, dt);
+}
+
+/// A planar robot whose state starts with its pose (Pose2DWithExtras): the pose view and its
+/// Jacobian against central differences.
+template <typename Robot>
+void requirePlanarPoseView(const sylva::Vec<Robot::kDim>& x) {
+  constexpr int D = Robot::kDim;
+  sylva::Mat<3, D> J;
+  const sylva::Vec<3> pose = Robot::pose(x, J);
+  CHECK(pose == x.template head<3>());
+  const sylva::Mat<3, D> numeric =
+      sylva::numericJacobian<3, D>([](const sylva::Vec<D>& y) { return sylva::Vec<3>(Robot::pose(y)); }, x);
+  CHECK((J - numeric).cwiseAbs().maxCoeff() < 1e-9);
 }
 
 }  // namespace sylva_test

@@ -61,10 +61,7 @@ TEST_CASE("Odometry2D Jacobians match numerical and automatic differentiation", 
   };
   for (const Case& c : cases) {
     INFO(c.name);
-    const auto report = testing::checkMotionJacobians(Odometry2D{}, c.x, c.u, 1.0, 1e-6);
-    INFO(report.message());
-    CHECK(report.ok);
-    sylva_test::requireMotionMatchesAutoDiff(Odometry2D{}, c.x, c.u, 1.0);
+    sylva_test::requireMotionJacobians(Odometry2D{}, c.x, c.u, 1.0);
   }
 }
 

@@ -37,10 +37,7 @@ TEST_CASE("Unicycle2D Jacobians match numerical and automatic differentiation", 
   };
   for (const Case& c : cases) {
     INFO(c.name);
-    const auto report = testing::checkMotionJacobians(Unicycle2D{}, c.x, c.u, c.dt, 1e-6);
-    INFO(report.message());
-    CHECK(report.ok);
-    sylva_test::requireMotionMatchesAutoDiff(Unicycle2D{}, c.x, c.u, c.dt);
+    sylva_test::requireMotionJacobians(Unicycle2D{}, c.x, c.u, c.dt);
   }
 }
 

@@ -66,20 +66,12 @@ TEST_CASE("Unicycle2DWithBias Jacobians match numerical and automatic differenti
           "[motion][jacobian][unicycle]") {
   for (const UnicycleCase& c : kUnicycleCases) {
     INFO(c.name);
-    const auto report = testing::checkMotionJacobians(kBiasedUnicycle, c.x, c.u, c.dt, 1e-6);
-    INFO(report.message());
-    CHECK(report.ok);
-    sylva_test::requireMotionMatchesAutoDiff(kBiasedUnicycle, c.x, c.u, c.dt);
+    sylva_test::requireMotionJacobians(kBiasedUnicycle, c.x, c.u, c.dt);
   }
 }
 
-TEST_CASE("Unicycle2DWithBias: the pose view and its Jacobian", "[motion][unicycle]") {
-  const Vec<6> x = kUnicycleCases[0].x;
-  Mat<3, 6> J;
-  const Vec<3> pose = Unicycle2DWithBias::pose(x, J);
-  CHECK(pose == x.head<3>());
-  const Mat<3, 6> numeric = numericJacobian<3, 6>([](const Vec<6>& y) { return Unicycle2DWithBias::pose(y); }, x);
-  CHECK((J - numeric).cwiseAbs().maxCoeff() < 1e-9);
+TEST_CASE("Unicycle2DWithBias: the pose view and its Jacobian", "[motion]") {
+  sylva_test::requirePlanarPoseView<Unicycle2DWithBias>(kUnicycleCases[0].x);
 }
 
 TEST_CASE("Unicycle2DWithBias: a filter recovers a simulated robot's gains, consistently over seeds",

@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -71,6 +72,18 @@ sylva::datasets::UtiasRobotData syntheticRobot(
     x = unicycle(x, effective, dt);
   }
   return robot;
+}
+
+/// Dataset 7 from the data folder, or nothing (with a message that the test skipped) when the
+/// folder is absent.
+std::optional<sylva::datasets::UtiasDataset> loadDataset7OrSkip() {
+  const std::string folder = SYLVA_DATA_DIR "/utias-mrclam/MRCLAM_Dataset7";
+  if (!std::filesystem::exists(folder + "/Barcodes.dat")) {
+    WARN("skipped: UTIAS MRCLAM Dataset 7 not found in " << folder);
+    SUCCEED("skipped");
+    return std::nullopt;
+  }
+  return sylva::datasets::loadUtiasMrclam(folder);
 }
 
 }  // namespace unity_utias_coverage_and_fit
@@ -150,13 +163,9 @@ TEST_CASE("UTIAS command fit recovers the delay and calibration of a synthetic r
 
 TEST_CASE("UTIAS command fit on all five robots of Dataset 7 is the compiled default",
           "[utias][data]") {
-  const std::string folder = SYLVA_DATA_DIR "/utias-mrclam/MRCLAM_Dataset7";
-  if (!std::filesystem::exists(folder + "/Barcodes.dat")) {
-    WARN("skipped: UTIAS MRCLAM Dataset 7 not found in " << folder);
-    SUCCEED("skipped");
-    return;
-  }
-  const auto data = sylva::datasets::loadUtiasMrclam(folder);
+  const std::optional<sylva::datasets::UtiasDataset> dataset7 = loadDataset7OrSkip();
+  if (!dataset7) return;
+  const auto& data = *dataset7;
   utias::RobotSet robots;
   for (const auto& r : data.robots) {
     robots.push_back(&r);
@@ -199,17 +208,13 @@ TEST_CASE("UTIAS online gains: the fit sets their prior, and on Dataset 7 each r
   fixed.online_gains = false;
   CHECK(utias::withCommandFit(fixed, fit).gain_sigma == fixed.gain_sigma);
 
-  const std::string folder = SYLVA_DATA_DIR "/utias-mrclam/MRCLAM_Dataset7";
-  if (!std::filesystem::exists(folder + "/Barcodes.dat")) {
-    WARN("skipped: UTIAS MRCLAM Dataset 7 not found in " << folder);
-    SUCCEED("skipped");
-    return;
-  }
+  const std::optional<sylva::datasets::UtiasDataset> dataset7 = loadDataset7OrSkip();
+  if (!dataset7) return;
   // Starting at gain 1 and bias 0, every robot's filter learns its gains from its landmark
   // readings alone: each final sigma is below the prior's, and the speed and turn-rate gains
   // lie within 3 of their sigmas of the pooled calibration that the Vicon truth gives (the
   // robots' own calibrations differ from the pooled one by much less than those sigmas).
-  const auto data = sylva::datasets::loadUtiasMrclam(folder);
+  const auto& data = *dataset7;
   const utias::NoiseConfig calibrated;
   utias::NoiseConfig uncalibrated = calibrated;
   uncalibrated.online_gains = true;
