@@ -1,6 +1,8 @@
 // readNumericTable: the reader under the dataset loaders. Blank-separated and CSV rows,
 // comments, CRLF, and a clear error naming file and line for every kind of malformed row.
 
+#include <clocale>
+#include <cstdlib>
 #include <string>
 #include <vector>
 
@@ -154,4 +156,60 @@ TEST_CASE("readNumericTable: a missing file, whole numbers and the callback's ow
     error = e.what();
   }
   CHECK(contains(error, "times.dat:3: the time goes back in time: 1.5 after 2"));
+}
+
+TEST_CASE("readNumericTable: decimal notation only, a leading plus, and values beyond double", "[datasets]") {
+  std::string error;
+  auto rows = readText("+1.5 -2e-3\n+.5 1E2\n", fields(2, 2), error);
+  REQUIRE(error.empty());
+  REQUIRE(rows.size() == 2);
+  CHECK(rows[0] == std::vector<double>{1.5, -2e-3});
+  CHECK(rows[1] == std::vector<double>{0.5, 100.0});
+  for (const char* bad : {"0x1p3", "+-1", "++1", "+", "1,5", "1e400", "-1e400", "1.5.2"}) {
+    INFO(bad);
+    readText(std::string("1 ") + bad + "\n", fields(2, 2), error);
+    CHECK(contains(error, std::string(":1: field 2 is not a finite number: '") + bad + "'"));
+  }
+}
+
+namespace unity_datasets_numeric_table {
+
+/// Compiles a comma-decimal locale (de_DE.UTF-8) into `dir` with glibc's localedef and makes
+/// the C library use it for numbers; false when this machine cannot (no localedef, or no
+/// locale sources: Debian's `locales` package).
+bool useCommaDecimalLocale(const TempFolder& dir) {
+  if (std::setlocale(LC_NUMERIC, "de_DE.UTF-8") == nullptr) {
+    const std::string command =
+        "localedef -i de_DE -f UTF-8 '" + (dir.path / "de_DE.UTF-8").string() + "' > /dev/null 2>&1";
+    if (std::system(command.c_str()) != 0) return false;
+    ::setenv("LOCPATH", dir.path.c_str(), 1);  // glibc reads it at every setlocale
+    if (std::setlocale(LC_NUMERIC, "de_DE.UTF-8") == nullptr) return false;
+  }
+  return std::strtod("1.5", nullptr) == 1.0;  // the C library now stops at the '.'
+}
+
+}  // namespace unity_datasets_numeric_table
+
+TEST_CASE("readNumericTable reads '.' as the decimal point whatever the process locale", "[datasets]") {
+  const TempFolder dir("numeric_table_locale");
+  const std::string path = dir.write("table.dat", "1.5 -2.25e1\n");
+  const bool comma_locale = useCommaDecimalLocale(dir);
+  std::vector<double> values;
+  std::string error;
+  try {
+    sylva::datasets::readNumericTable(path, fields(2, 2), [&](const NumericRow& row) {
+      values = {row[0], row[1]};
+    });
+  } catch (const sylva::Error& e) {
+    error = e.what();
+  }
+  std::setlocale(LC_NUMERIC, "C");
+  ::unsetenv("LOCPATH");
+  if (!comma_locale) {
+    WARN("skipped: no comma-decimal locale (de_DE.UTF-8) could be made here (Debian: apt-get install locales)");
+    SUCCEED("skipped");
+    return;
+  }
+  INFO(error);
+  CHECK(values == std::vector<double>{1.5, -22.5});
 }

@@ -4,6 +4,7 @@
 // when it is beside the repository.
 
 #include <filesystem>
+#include <limits>
 #include <string>
 
 #include <sylva/datasets/utias_mrclam.hpp>
@@ -131,6 +132,7 @@ TEST_CASE("UTIAS loader takes an explicit time reference and LF files", "[datase
   UtiasLoadOptions o;
   o.robots = {1};
   o.time_reference_s = 100.0;
+  o.max_span_gap_s = std::numeric_limits<double>::infinity();  // this odometry is not of 2009
   const UtiasDataset d = loadUtiasMrclam(dir.path.string(), o);
   REQUIRE(d.robots.size() == 1);
   CHECK(d.time_reference_s == 100.0);
@@ -191,6 +193,38 @@ TEST_CASE("UTIAS loader names file and line of every malformed row", "[datasets]
   bad.robots = {6};
   CHECK(sylva_test::throwsCode([&] { loadUtiasMrclam(dir.path.string(), bad); },
                                sylva::ErrorCode::kInvalidArgument));
+}
+
+TEST_CASE("UTIAS loader reports files that cover different time spans", "[datasets]") {
+  // Ground truth of robot 1 cut 100 s short of its odometry.
+  const std::string late_odometry = kOdometry + "1248446290.000 \t 0 \t 0\r\n";
+  std::string e = loadError("Robot1_Odometry.dat", late_odometry);
+  CHECK(contains(e, "the files cover different time spans"));
+  CHECK(contains(e, "Robot1_Odometry.dat [1248446188.323, 1248446290] s"));
+  CHECK(contains(e, "Robot1_Groundtruth.dat [1248446182.116, 1248446182.132] s"));
+  // A measurement long after the odometry ends.
+  e = loadError("Robot2_Measurement.dat", kMeasurement + "1248446300.000 \t 63 \t 5.4 \t 0.1\r\n");
+  CHECK(contains(e, "Robot2_Measurement.dat [1248446192.94, 1248446300] s"));
+  // Robot 2's ground truth ends 60 s after robot 1's (and its odometry with it).
+  const TempFolder dir("utias_mrclam_spans");
+  writeFolder(dir);
+  dir.write("Robot2_Groundtruth.dat", kGroundtruth + "1248446242.000 \t 2.2 \t 4.2 \t 0.0\r\n");
+  dir.write("Robot2_Odometry.dat", kOdometry + "1248446241.000 \t 0 \t 0\r\n");
+  try {
+    loadUtiasMrclam(dir.path.string(), robots12());
+    FAIL("loaded");
+  } catch (const sylva::Error& error) {
+    CHECK(error.code() == sylva::ErrorCode::kMalformedData);
+    CHECK(contains(error.what(), "Robot1_Groundtruth.dat [1248446182.116, 1248446182.132] s, "));
+  }
+  // The tolerance is the caller's: infinity accepts, a negative one is a mistake.
+  UtiasLoadOptions o = robots12();
+  o.max_span_gap_s = std::numeric_limits<double>::infinity();
+  CHECK(loadUtiasMrclam(dir.path.string(), o).robot(2).groundtruth.size() == 3);
+  o.max_span_gap_s = 61.0;
+  CHECK(loadUtiasMrclam(dir.path.string(), o).robots.size() == 2);
+  o.max_span_gap_s = -1.0;
+  CHECK(sylva_test::throwsCode([&] { loadUtiasMrclam(dir.path.string(), o); }, sylva::ErrorCode::kInvalidArgument));
 }
 
 TEST_CASE("UTIAS loader on the real Dataset 7 matches the counts of its README", "[datasets][data]") {

@@ -103,6 +103,29 @@ TEST_CASE("Victoria Park odometry and GPS: values and malformed lines", "[datase
   CHECK(contains(loadError(dir, "g.txt", "\r\n", fix), "g.txt: no GPS fixes in the file"));
 }
 
+TEST_CASE("Victoria Park: a folder whose files cover different time spans is reported", "[datasets][victoria_park]") {
+  const TempFolder dir("victoria_park_spans");
+  const std::string scans = "0.852 20.46 0.88 0.35\n100.0 18.1 2.88 0.16\n";
+  const std::string odometry = "0.973 21940 0.0 0.0\n100.2 121167 1.0 0.0\n";
+  dir.write("measurements.dat", scans);
+  dir.write("odometry.txt", odometry);
+  dir.write("gps.txt", "0.000 20967 1 2\n99.5 120467 3 4\n");
+  CHECK(ds::loadVictoriaPark(dir.path.string()).gps.size() == 2);
+  // GPS cut 60 s short of the odometry: named with both spans.
+  dir.write("gps.txt", "0.000 20967 1 2\n40.0 60967 3 4\n");
+  std::string error;
+  try {
+    ds::loadVictoriaPark(dir.path.string());
+  } catch (const sylva::Error& e) {
+    error = e.code() == sylva::ErrorCode::kMalformedData ? e.what() : "wrong code";
+  }
+  CHECK(contains(error, "the files cover different time spans: "));
+  CHECK(contains(error, "odometry.txt [0.973, 100.2] s, "));
+  CHECK(contains(error, "gps.txt [0, 40] s (more than 30 s apart"));
+  CHECK(ds::loadVictoriaPark(dir.path.string(), 61.0).gps.size() == 2);
+  CHECK(sylva_test::throwsCode([&] { ds::loadVictoriaPark(dir.path.string(), -1.0); }, sylva::ErrorCode::kInvalidArgument));
+}
+
 TEST_CASE("Victoria Park: the real files match the counts of the data README", "[datasets][victoria_park][data]") {
   const std::string folder = SYLVA_DATA_DIR "/victoria-park";
   if (!std::filesystem::exists(folder + "/measurements.dat")) {

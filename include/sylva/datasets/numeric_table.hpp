@@ -9,17 +9,19 @@
 /// - a line whose first non-blank character is the comment character (default '#') and an
 ///   empty line are skipped;
 /// - CRLF and LF line endings are both accepted, and so is trailing whitespace;
-/// - every field must be a whole number in C's `strtod` syntax. "nan" and "inf" are refused
-///   unless `allow_non_finite` is set.
+/// - every field must be a whole number in decimal notation ("12", "-0.5", "+3e-2"), read by
+///   `std::from_chars`, so the process locale (a comma as decimal separator, say) does not
+///   change what a file means. Hexadecimal floats are refused. "nan" and "inf" are refused
+///   unless `allow_non_finite` is set; so is a value outside the range of double.
 ///
 /// Errors: a file that cannot be opened, a field that is not a number, or a row with too few
 /// or too many fields throw `sylva::Error(kMalformedData)`. The message names the file, the
 /// line number and what is wrong. The callback checks its own rules with `row.fail(...)`,
 /// which gives the same message form.
 
-#include <cerrno>
+#include <charconv>
 #include <cmath>
-#include <cstdlib>
+#include <system_error>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -82,13 +84,16 @@ class NumericRow {
 
 namespace detail {
 
-/// Parses a whole field; false if any character is left over or the value overflows.
+/// Parses a whole field; false if any character is left over or the value is out of the range
+/// of double. Locale-independent: std::from_chars always reads '.' as the decimal point.
 inline bool parseField(const std::string& field, bool allow_non_finite, double& value) {
-  if (field.empty()) return false;
-  char* end = nullptr;
-  errno = 0;
-  value = std::strtod(field.c_str(), &end);
-  if (end != field.c_str() + field.size() || errno == ERANGE) return false;
+  const char* first = field.data();
+  const char* const last = field.data() + field.size();
+  // from_chars refuses a leading '+', which strtod (and so the files' writers) accept.
+  if (first != last && *first == '+' && last - first > 1 && first[1] != '-' && first[1] != '+') ++first;
+  if (first == last) return false;
+  const auto [end, error] = std::from_chars(first, last, value, std::chars_format::general);
+  if (error != std::errc() || end != last) return false;
   return allow_non_finite || std::isfinite(value);
 }
 
@@ -164,6 +169,23 @@ inline void requireNonDecreasing(const NumericRow& row, double previous, double 
     os << what << " goes back in time: " << time << " after " << previous;
     row.fail(os.str());
   }
+}
+
+/// The first and last time of one file of a recording.
+struct FileTimeSpan {
+  std::string file;
+  double first = 0.0;
+  double last = 0.0;
+};
+
+/// Throws kMalformedData for two files of one recording whose time spans disagree by more than
+/// `gap` seconds, naming both files and their spans (a truncated copy shows up this way).
+[[noreturn]] inline void failTimeSpanMismatch(const FileTimeSpan& a, const FileTimeSpan& b, double gap) {
+  std::ostringstream os;
+  os.precision(15);
+  os << "the files cover different time spans: " << a.file << " [" << a.first << ", " << a.last << "] s, "
+     << b.file << " [" << b.first << ", " << b.last << "] s (more than " << gap << " s apart; a truncated file?)";
+  fail(ErrorCode::kMalformedData, os.str());
 }
 
 }  // namespace sylva::datasets

@@ -29,6 +29,11 @@
 ///   barcode), so the caller can count and report it.
 /// - Times must not go backward within a file; equal consecutive times (several
 ///   measurements of one image, the odometry's duplicate stamps) are allowed.
+/// - The files of one recording must cover one time span, within
+///   `UtiasLoadOptions::max_span_gap_s` (30 s; Dataset 7's files differ by at most 8.6 s):
+///   a robot's odometry and ground truth start and end together, its measurements lie within
+///   them, and every robot's ground truth ends with the others'. A file cut short (a
+///   truncated copy) is reported this way; a cut shorter than the tolerance is not seen.
 ///
 /// Errors, all `sylva::Error(kMalformedData)` naming the file and, for a row, its line: a
 /// missing file, a field that is not a finite number, a wrong number of columns, a whole
@@ -36,8 +41,9 @@
 /// listed twice in Barcodes.dat, a robot subject (1-5) missing from Barcodes.dat, a landmark
 /// ground truth row of a subject that is not a landmark of Barcodes.dat, a range <= 0, a
 /// bearing or heading outside [-pi, pi] (beyond the rounding of the files' last decimal),
-/// an empty data file. A robot number outside 1-5 in the options
-/// is the caller's mistake: kInvalidArgument.
+/// an empty data file, files whose time spans disagree (see above). A robot number outside 1-5
+/// or a negative or NaN `max_span_gap_s` in the options is the caller's mistake:
+/// kInvalidArgument.
 
 #include <algorithm>
 #include <cmath>
@@ -115,6 +121,9 @@ struct UtiasLoadOptions {
   std::vector<int> robots = {1, 2, 3, 4, 5};
   /// Unix time subtracted from every time; NaN: the earliest time read, floored to 1 s.
   double time_reference_s = std::numeric_limits<double>::quiet_NaN();
+  /// Largest disagreement (s) allowed between the time spans of a recording's files (see the
+  /// file comment); infinity turns the check off.
+  double max_span_gap_s = 30.0;
 };
 
 namespace detail {
@@ -150,6 +159,8 @@ inline UtiasDataset loadUtiasMrclam(const std::string& folder, const UtiasLoadOp
     if (r < 1 || r > kUtiasRobotCount)
       fail(ErrorCode::kInvalidArgument,
            "loadUtiasMrclam: robot " + std::to_string(r) + " does not exist (robots are 1-5)");
+  if (!(options.max_span_gap_s >= 0.0))
+    fail(ErrorCode::kInvalidArgument, "loadUtiasMrclam: max_span_gap_s must be >= 0 (infinity: no check)");
   UtiasDataset data;
   data.folder = folder;
   const std::string dir = folder.empty() || folder.back() == '/' ? folder : folder + "/";
@@ -193,6 +204,8 @@ inline UtiasDataset loadUtiasMrclam(const std::string& folder, const UtiasLoadOp
   // Raw Unix times first; the reference is subtracted once all files are read. A double
   // holds a Unix time to about 2e-7 s, far below the files' millisecond resolution.
   double earliest = std::numeric_limits<double>::infinity();
+  const double gap = options.max_span_gap_s;
+  std::vector<FileTimeSpan> groundtruth_spans;
   for (const int r : options.robots) {
     UtiasRobotData robot;
     robot.robot = r;
@@ -219,6 +232,21 @@ inline UtiasDataset loadUtiasMrclam(const std::string& folder, const UtiasLoadOp
       if (std::abs(row[3]) > kPi + 1e-4) row.fail("the heading must be in [-pi, pi], got " + row.text(3));
       robot.groundtruth.push_back({row[0], Vec<3>(row[1], row[2], row[3])});
     });
+    // One recording, one time span (see the file comment).
+    const FileTimeSpan odometry{prefix + "Odometry.dat", robot.odometry.front().time_s, robot.odometry.back().time_s};
+    const FileTimeSpan truth{prefix + "Groundtruth.dat", robot.groundtruth.front().time_s,
+                                  robot.groundtruth.back().time_s};
+    if (std::abs(odometry.first - truth.first) > gap || std::abs(odometry.last - truth.last) > gap)
+      failTimeSpanMismatch(odometry, truth, gap);
+    for (const auto* list : {&robot.landmark_observations, &robot.robot_observations}) {
+      if (list->empty()) continue;
+      const FileTimeSpan seen{prefix + "Measurement.dat", list->front().time_s, list->back().time_s};
+      if (seen.first < odometry.first - gap || seen.last > odometry.last + gap)
+        failTimeSpanMismatch(seen, odometry, gap);
+    }
+    if (!groundtruth_spans.empty() && std::abs(groundtruth_spans.front().last - truth.last) > gap)
+      failTimeSpanMismatch(groundtruth_spans.front(), truth, gap);
+    groundtruth_spans.push_back(truth);
     earliest = std::min({earliest, robot.odometry.front().time_s, robot.groundtruth.front().time_s});
     if (!robot.landmark_observations.empty())
       earliest = std::min(earliest, robot.landmark_observations.front().time_s);

@@ -22,7 +22,8 @@
 ///
 /// Checks (each a `sylva::Error(kMalformedData)` naming the file and line): the number of
 /// fields, numbers in every field, time never going back, t_raw a whole number, range > 0,
-/// bearing in [0, pi], diameter > 0, |steering| < pi/2. An empty file is an error too. The
+/// bearing in [0, pi], diameter > 0, |steering| < pi/2. An empty file is an error too, and so
+/// are files of one folder that cover different time spans (`loadVictoriaPark`). The
 /// loaders convert nothing: the bearing stays in the laser's 0..pi convention
 /// (`carBearing` gives the car-frame bearing, bearing - pi/2).
 
@@ -118,12 +119,23 @@ struct VictoriaParkData {
   std::vector<VictoriaParkGps> gps;
 };
 
-/// Reads measurements.dat, odometry.txt and gps.txt from `folder`.
-inline VictoriaParkData loadVictoriaPark(const std::string& folder) {
+/// Reads measurements.dat, odometry.txt and gps.txt from `folder`. The three files must start
+/// and end within `max_span_gap_s` of each other (the real files: within 1 s); a file cut
+/// short is reported as kMalformedData naming both spans. Infinity turns the check off; a
+/// negative or NaN gap is kInvalidArgument.
+inline VictoriaParkData loadVictoriaPark(const std::string& folder, double max_span_gap_s = 30.0) {
+  if (!(max_span_gap_s >= 0.0))
+    fail(ErrorCode::kInvalidArgument, "loadVictoriaPark: max_span_gap_s must be >= 0 (infinity: no check)");
   VictoriaParkData data;
   data.scans = loadVictoriaParkMeasurements(folder + "/measurements.dat");
   data.odometry = loadVictoriaParkOdometry(folder + "/odometry.txt");
   data.gps = loadVictoriaParkGps(folder + "/gps.txt");
+  const FileTimeSpan spans[3] = {{folder + "/odometry.txt", data.odometry.front().t_s, data.odometry.back().t_s},
+                                 {folder + "/measurements.dat", data.scans.front().t_s, data.scans.back().t_s},
+                                 {folder + "/gps.txt", data.gps.front().t_s, data.gps.back().t_s}};
+  for (const FileTimeSpan& other : {spans[1], spans[2]})
+    if (std::abs(other.first - spans[0].first) > max_span_gap_s || std::abs(other.last - spans[0].last) > max_span_gap_s)
+      failTimeSpanMismatch(spans[0], other, max_span_gap_s);
   return data;
 }
 
