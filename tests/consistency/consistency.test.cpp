@@ -62,20 +62,33 @@ NeesSeries simulateNees(double filter_scale, int runs, int steps, unsigned seed)
 }
 }  // namespace
 
-TEST_CASE("a consistent estimator's averaged NEES stays inside the 95% bounds", "[consistency]") {
-  const NeesSeries consistent = simulateNees(1.0, 50, 400, 42);
-  CHECK(consistent.runs() == 50);
-  CHECK(consistent.steps() == 400);
-  CHECK(consistent.mean() == Approx(3.0).epsilon(0.03));
-  // 95% per step: the share inside is binomial(400, 0.95), so 0.90..0.99 is far in the tails.
-  CHECK(consistent.fractionInside() > 0.90);
-  CHECK(consistent.fractionInside() < 0.99);
+TEST_CASE("a consistent estimator's averaged NEES stays inside the 95% bounds, a 2x wrong one outside",
+          "[consistency]") {
+  // Over seeds 1-20. Per step the 50-run average of a 3-dof NEES is chi-square(150) / 50, so
+  // each of the 400 independent steps is inside its 95% bounds with probability 0.95: the
+  // share inside is binomial(400, 0.95) / 400, standard deviation 0.011, and [0.90, 0.99] lies
+  // 4.6 and 3.7 standard deviations away (a seed fails with probability about 1e-4).
+  // Told half the variance, the average is 2 chi-square(150) / 50: mean 6, sd 0.69, against an
+  // upper bound of 3.7, so a step is inside with probability 4e-4; told twice the variance,
+  // mean 1.5, sd 0.17, against a lower bound of 2.4 (probability below 1e-7). A share inside
+  // of 0.05 would need about 20 of 400 such steps.
+  for (unsigned seed = 1; seed <= 20; ++seed) {
+    INFO("seed " << seed);
+    const NeesSeries consistent = simulateNees(1.0, 50, 400, seed);
+    CHECK(consistent.runs() == 50);
+    CHECK(consistent.steps() == 400);
+    // The grand mean of 20,000 chi-square(3) draws: sd sqrt(6 / 20000) = 0.017; 0.08 is 4.6 sd.
+    CHECK(consistent.mean() == Approx(3.0).margin(0.08));
+    CHECK(consistent.fractionInside() > 0.90);
+    CHECK(consistent.fractionInside() < 0.99);
 
-  const NeesSeries optimistic = simulateNees(0.1, 50, 400, 42);  // told 10x smaller variance
-  CHECK(optimistic.mean() > optimistic.bounds().second);
-  CHECK(optimistic.fractionInside() < 0.01);
-  const NeesSeries pessimistic = simulateNees(10.0, 50, 400, 42);
-  CHECK(pessimistic.mean() < pessimistic.bounds().first);
+    const NeesSeries optimistic = simulateNees(0.5, 50, 400, seed);  // told half the variance
+    CHECK(optimistic.mean() > optimistic.bounds().second);
+    CHECK(optimistic.fractionInside() < 0.05);
+    const NeesSeries pessimistic = simulateNees(2.0, 50, 400, seed);  // told twice the variance
+    CHECK(pessimistic.mean() < pessimistic.bounds().first);
+    CHECK(pessimistic.fractionInside() < 0.05);
+  }
 }
 
 TEST_CASE("NMEE bounds are those of an N(0, 1/N) average", "[consistency]") {
