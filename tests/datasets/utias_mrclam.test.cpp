@@ -227,6 +227,29 @@ TEST_CASE("UTIAS loader reports files that cover different time spans", "[datase
   CHECK(sylva_test::throwsCode([&] { loadUtiasMrclam(dir.path.string(), o); }, sylva::ErrorCode::kInvalidArgument));
 }
 
+TEST_CASE("UTIAS loader refuses times whose difference to the time reference overflows", "[datasets]") {
+  // Caught by an invariant of fuzz/utias_mrclam.cpp (loaded times are finite): -1e308 and
+  // 1e308 are finite times whose spans agree, but 1e308 less the reference -1e308 is not.
+  const TempFolder dir("utias_mrclam_overflow");
+  writeFolder(dir);
+  dir.write("Robot1_Odometry.dat", "-1e308 0 0\n1e308 0 0\n");
+  dir.write("Robot1_Measurement.dat", "0 63 5 0.1\n");
+  dir.write("Robot1_Groundtruth.dat", "-1e308 0 0 0\n1e308 0 0 0\n");
+  UtiasLoadOptions o;
+  o.robots = {1};
+  std::string e;
+  try {
+    loadUtiasMrclam(dir.path.string(), o);
+  } catch (const sylva::Error& error) {
+    CHECK(error.code() == sylva::ErrorCode::kMalformedData);
+    e = error.what();
+  }
+  CHECK(contains(e, "Robot1_Odometry.dat: the time 1e+308 s less the time reference -1e+308 s overflows"));
+  // An explicit reference half-way keeps every difference finite.
+  o.time_reference_s = 0.0;
+  CHECK(loadUtiasMrclam(dir.path.string(), o).robot(1).groundtruth.back().time_s == 1e308);
+}
+
 TEST_CASE("UTIAS loader on the real Dataset 7 matches the counts of its README", "[datasets][data]") {
   const std::string folder = SYLVA_DATA_DIR "/utias-mrclam/MRCLAM_Dataset7";
   if (!std::filesystem::exists(folder + "/Barcodes.dat")) {

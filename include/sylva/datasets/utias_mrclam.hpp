@@ -41,7 +41,8 @@
 /// listed twice in Barcodes.dat, a robot subject (1-5) missing from Barcodes.dat, a landmark
 /// ground truth row of a subject that is not a landmark of Barcodes.dat, a range <= 0, a
 /// bearing or heading outside [-pi, pi] (beyond the rounding of the files' last decimal),
-/// an empty data file, files whose time spans disagree (see above). A robot number outside 1-5
+/// an empty data file, files whose time spans disagree (see above), a time whose difference to
+/// the time reference overflows (e.g. -1e308 and 1e308 in one file). A robot number outside 1-5
 /// or a negative or NaN `max_span_gap_s` in the options is the caller's mistake:
 /// kInvalidArgument.
 
@@ -49,6 +50,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -260,10 +262,23 @@ inline UtiasDataset loadUtiasMrclam(const std::string& folder, const UtiasLoadOp
   if (!std::isfinite(ref)) fail(ErrorCode::kInvalidArgument, "loadUtiasMrclam: the time reference is not finite");
   data.time_reference_s = ref;
   for (auto& robot : data.robots) {
-    for (auto& c : robot.odometry) c.time_s -= ref;
-    for (auto& o : robot.landmark_observations) o.time_s -= ref;
-    for (auto& o : robot.robot_observations) o.time_s -= ref;
-    for (auto& p : robot.groundtruth) p.time_s -= ref;
+    const std::string prefix = dir + "Robot" + std::to_string(robot.robot) + "_";
+    // Each time is finite, but its difference to the reference may not be (-1e308 and 1e308).
+    const auto shift = [&](auto& list, const char* file) {
+      for (auto& item : list) {
+        const double raw = item.time_s;
+        item.time_s -= ref;
+        if (std::isfinite(item.time_s)) continue;
+        std::ostringstream os;
+        os.precision(15);
+        os << "the time " << raw << " s less the time reference " << ref << " s overflows";
+        failMalformed(prefix + file, 0, os.str());
+      }
+    };
+    shift(robot.odometry, "Odometry.dat");
+    shift(robot.landmark_observations, "Measurement.dat");
+    shift(robot.robot_observations, "Measurement.dat");
+    shift(robot.groundtruth, "Groundtruth.dat");
   }
   return data;
 }
