@@ -56,13 +56,13 @@ echo "==> victoria_park" >&2
 "${build_dir}/examples/victoria_park/victoria_park" "${vp[@]}" > "${build_dir}/victoria_park.json"
 echo "==> utias" >&2
 "${build_dir}/examples/utias/utias" "${ut[@]}" > "${build_dir}/utias.json"
-python3 "${root}/scripts/real_data_report.py" --victoria-park "${build_dir}/victoria_park.json" \
-  --utias "${build_dir}/utias.json" --commands "${commands}" --context "${context}" \
-  --out "${root}/docs/results-real-data.md"
-echo "==> wrote docs/results-real-data.md" >&2
 echo "==> utias --leave-one-out" >&2
 "${build_dir}/examples/utias/utias" --data "${data_dir}/utias-mrclam/MRCLAM_Dataset7" --leave-one-out --json \
   > "${build_dir}/utias_loro.json"
+python3 "${root}/scripts/real_data_report.py" --victoria-park "${build_dir}/victoria_park.json" \
+  --utias "${build_dir}/utias.json" --loro "${build_dir}/utias_loro.json" --commands "${commands}" \
+  --context "${context}" --out "${root}/docs/results-real-data.md"
+echo "==> wrote docs/results-real-data.md" >&2
 echo "==> utias with the fixed calibration, and with gains learned from scratch" >&2
 "${build_dir}/examples/utias/utias" --data "${data_dir}/utias-mrclam/MRCLAM_Dataset7" --leave-one-out --gains fixed \
   --json > "${build_dir}/utias_loro_fixed.json"
