@@ -28,6 +28,8 @@
 #include <sylva/consistency/chi_square.hpp>
 #include <sylva/core/error.hpp>
 
+#include "paired_claims.hpp"
+
 namespace tree_width_study {
 
 namespace fs = std::filesystem;
@@ -77,6 +79,7 @@ struct StudyData {
   /// pipeline -> per-sample NEES values (noise sweep, lowest level, non-occluded only)
   std::map<std::string, std::vector<std::vector<double>>> nees;
   int nees_every = 0;
+  PairedRuns paired;  ///< the noise and density runs, grouped by identical measurements
   double nees_level = 0.0;
   int runs = 0;
 };
@@ -89,6 +92,7 @@ inline StudyData aggregate(const std::vector<nlohmann::json>& lines) {
   data.nees_level = lowest;
   for (const auto& j : lines) {
     ++data.runs;
+    addPairedRun(data.paired, j);
     Key k;
     k.sweep = j.at("sweep").get<std::string>();
     k.occlusion = j.at("occlusion").get<std::string>();
