@@ -8,6 +8,7 @@
 #   bash scripts/run_study.sh --help      every flag (shards, threads, seed, merge, report)
 #
 # The runs go to build/main/tree_width_study_runs.jsonl unless --out says otherwise.
+# Shards on several cores or machines (GNU parallel, a Slurm job array): docs/study/cluster.md.
 # Environment: SYLVA_BUILD_ROOT (default <repo>/build), SYLVA_JOBS (build parallelism).
 set -euo pipefail
 
@@ -15,15 +16,9 @@ repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${SYLVA_BUILD_ROOT:-$repo/build}/main"
 jobs="${SYLVA_JOBS:-$(nproc)}"
 
-# shellcheck source=lib/install_packages.sh
-source "$repo/scripts/lib/install_packages.sh"
-sylva_install_packages build-essential cmake libeigen3-dev libboost-math-dev libcli11-dev nlohmann-json3-dev gnuplot-nox
-
-echo "==> building tree_width_study in $build" >&2
-cmake -S "$repo" -B "$build" -DCMAKE_BUILD_TYPE=Release \
-  -DSYLVA_BUILD_TESTS=OFF -DSYLVA_BUILD_BENCHMARKS=OFF -DSYLVA_BUILD_EXAMPLES=ON \
-  -DCMAKE_RUNTIME_OUTPUT_DIRECTORY="$build/bin" >&2
-cmake --build "$build" --target tree_width_study -j "$jobs" >&2
+# shellcheck source=lib/study.sh
+source "$repo/scripts/lib/study.sh"
+sylva_study_build "$repo" "$build" "$jobs"
 
 cd "$repo"
 args=("$@")

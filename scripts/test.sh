@@ -42,8 +42,11 @@ build_root="${SYLVA_BUILD_ROOT:-$repo/build}"
 jobs="${SYLVA_JOBS:-$(nproc)}"
 
 # ---- dependencies ------------------------------------------------------------------------
+# parallel: the study's GNU parallel test; locales: the locale sources from which a test
+# compiles de_DE.UTF-8 to check number parsing under a comma-decimal locale; python3: the
+# docs figure tests.
 packages=(build-essential cmake libeigen3-dev catch2 libcli11-dev nlohmann-json3-dev
-          libboost-math-dev libbenchmark-dev)
+          libboost-math-dev libbenchmark-dev parallel locales python3)
 # The sanitizer build uses clang (and its sanitizer runtimes): see the phase below.
 if ((run_sanitize)) && [[ -z "${SYLVA_SANITIZE_CXX:-}" ]]; then packages+=(clang libclang-rt-dev); fi
 if ((run_main)) && [[ "${SYLVA_CXX:-}" == clang++* ]]; then packages+=(clang); fi
