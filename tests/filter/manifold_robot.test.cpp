@@ -189,6 +189,17 @@ TEST_CASE("manifold robot: plusJacobian and minusJacobian match numerical and au
     Mat<4, 3> E_auto;
     for (int r = 0; r < 4; ++r) E_auto.row(r) = moved[r].derivatives().transpose();
     CHECK((E.block<4, 3>(3, 3) - E_auto).cwiseAbs().maxCoeff() < 1e-14);
+    // And of Log(q_x^* (x) q_y) at q_y = q_x, the quaternion block of minusJacobian.
+    using Dual4 = Eigen::AutoDiffScalar<Vec<4>>;
+    Vec<4, Dual4> q_y;
+    for (int i = 0; i < 4; ++i) q_y[i] = Dual4(x[3 + i], 4, i);
+    const Vec<4, Dual4> q_x_conj(Dual4(x[3]), Dual4(-x[4]), Dual4(-x[5]), Dual4(-x[6]));
+    const Vec<3, Dual4> rotation = rotationVectorFromQuaternion<Dual4>(quaternionProduct<Dual4>(q_x_conj, q_y));
+    Mat<3, 4> M_auto;
+    for (int r = 0; r < 3; ++r) M_auto.row(r) = rotation[r].derivatives().transpose();
+    const Mat<3, 4> M_q = M.block<3, 4>(3, 3);
+    INFO("minusJacobian's quaternion block\n" << M_q << "\nautodiff\n" << M_auto);
+    CHECK((M_q - M_auto).cwiseAbs().maxCoeff() < 1e-14);
   }
 }
 

@@ -5,13 +5,13 @@
 #include <cmath>
 #include <limits>
 
-#include <sylva/diff/auto_diff.hpp>
 #include <sylva/filter/ekf.hpp>
 #include <sylva/measurements/range_bearing_diameter.hpp>
 #include <sylva/motion/ackermann_2d.hpp>
 #include <sylva/motion/unicycle_2d.hpp>
 #include <sylva/testing/check_jacobians.hpp>
 
+#include "autodiff_check.hpp"
 #include "error_helpers.hpp"
 #include "sylva_catch.hpp"
 
@@ -54,12 +54,7 @@ TEST_CASE("RangeBearingDiameter: prediction and Jacobians", "[measurements][jaco
       INFO(report.message());
       CHECK(report.ok);
       // And against forward-mode automatic differentiation of predict<T>, exact to round-off.
-      Mat<3, 3> J_x, A_x, J_l, A_l;
-      model(g.robot, g.tree, J_x, J_l);
-      const AutoDiff<RangeBearingDiameter> automatic(model);
-      automatic(g.robot, g.tree, A_x, A_l);
-      CHECK((J_x - A_x).cwiseAbs().maxCoeff() <= 1e-11 * std::max(1.0, J_x.cwiseAbs().maxCoeff()));
-      CHECK((J_l - A_l).cwiseAbs().maxCoeff() <= 1e-11 * std::max(1.0, J_l.cwiseAbs().maxCoeff()));
+      sylva_test::checkMeasurementAgainstAutoDiff(model, g.robot, g.tree);
       const auto inv = testing::checkInverseJacobians(inverse, g.robot, z, 1e-6);
       INFO(inv.message());
       CHECK(inv.ok);

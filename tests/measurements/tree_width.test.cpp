@@ -3,6 +3,7 @@
 // differences and automatic differentiation at ordinary and awkward geometry, degenerate
 // and invalid input.
 
+#include "autodiff_check.hpp"
 #include "camera_pose.hpp"
 #include "sylva_catch.hpp"
 
@@ -314,20 +315,10 @@ TEST_CASE("TreeWidth Jacobians match numerical differentiation", "[measurements]
 TEST_CASE("TreeWidth analytic Jacobians equal automatic differentiation",
           "[measurements][jacobian]") {
   const TreeWidth model(kCamera);
-  const AutoDiff<TreeWidth> automatic(model);
   for (const Geometry& g : jacobianGeometries()) {
     INFO(g.name);
-    Mat<3, 7> J_z_x, A_z_x;
-    Mat<3, 4> J_z_l, A_z_l;
-    const Vec<3> z = model(g.camera, g.tree, J_z_x, J_z_l);
-    const Vec<3> z_auto = automatic(g.camera, g.tree, A_z_x, A_z_l);
-    CHECK((z - z_auto).norm() <= 1e-12 * z.norm());
-    const double scale =
-        std::max(1.0, std::max(J_z_x.cwiseAbs().maxCoeff(), J_z_l.cwiseAbs().maxCoeff()));
-    INFO("J_z_x analytic\n" << J_z_x << "\nautomatic\n" << A_z_x);
-    CHECK((J_z_x - A_z_x).cwiseAbs().maxCoeff() <= 1e-9 * scale);
-    INFO("J_z_l analytic\n" << J_z_l << "\nautomatic\n" << A_z_l);
-    CHECK((J_z_l - A_z_l).cwiseAbs().maxCoeff() <= 1e-9 * scale);
+    // Entry by entry, relative to each entry's own scale, and the values (tests/autodiff_check.hpp).
+    sylva_test::checkMeasurementAgainstAutoDiff(model, g.camera, g.tree);
   }
 }
 

@@ -43,13 +43,18 @@ Vec<4, T> quaternionFromRotationVector(const Vec<3, T>& theta) {
 }
 
 /// The rotation vector of a unit quaternion (Log, the inverse of
-/// quaternionFromRotationVector), the short way round: the angle is at most pi.
-inline Vec<3> rotationVectorFromQuaternion(const Vec<4>& q_in) {
-  const Vec<4> q = q_in[0] < 0.0 ? Vec<4>(-q_in) : q_in;
-  const Vec<3> v = q.tail<3>();
-  const double s = v.norm();
-  if (s < 1e-8) return (2.0 / q[0]) * v * (1.0 - s * s / (3.0 * q[0] * q[0]));  // atan series
-  return (2.0 * std::atan2(s, q[0]) / s) * v;
+/// quaternionFromRotationVector), the short way round: the angle is at most pi. Generic in
+/// the scalar; below 1e-8 rad the atan series is written in s^2 = |v|^2, so that automatic
+/// differentiation at the identity never meets sqrt(0).
+template <typename T>
+Vec<3, T> rotationVectorFromQuaternion(const Vec<4, T>& q_in) {
+  using std::sqrt;
+  const Vec<4, T> q = scalarValue(q_in[0]) < 0.0 ? Vec<4, T>(-q_in) : q_in;
+  const Vec<3, T> v = q.template tail<3>();
+  const T s2 = v.squaredNorm();
+  if (scalarValue(s2) < 1e-16) return (T(2.0) / q[0]) * v * (T(1.0) - s2 / (T(3.0) * q[0] * q[0]));  // atan series
+  const T s = sqrt(s2);
+  return (T(2.0) * atan2Generic(s, q[0]) / s) * v;
 }
 
 /// Rotation matrix of a unit quaternion (w, x, y, z).

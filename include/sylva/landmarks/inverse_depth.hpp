@@ -81,6 +81,13 @@ struct InverseDepthToPoint3 {
   using To = Point3;
   static constexpr const char* kName = "InverseDepthToPoint3";
 
+  /// The point anchor + m / rho, generic in the scalar for automatic differentiation. No
+  /// checks: operator() validates l and returns this.
+  template <typename T>
+  Vec<3, T> convert(const Vec<Robot_::kDim, T>& /*robot*/, const Vec<6, T>& l) const {
+    return InverseDepth::point<T>(l);
+  }
+
   Vec<3> operator()(const Vec<Robot_::kDim>& /*robot*/,
                     const Vec<6>& l,
                     JacobianRef<3, Robot_::kDim> J_to_x = {},
@@ -105,7 +112,7 @@ struct InverseDepthToPoint3 {
       (*J_to_l).col(4) = Vec<3>(-sp * ct, -sp * st, cp) / rho;    // d m / d phi
       (*J_to_l).col(5) = -m / (rho * rho);
     }
-    return l.head<3>() + m / rho;
+    return InverseDepth::point<double>(l);
   }
 };
 

@@ -86,6 +86,15 @@ struct InverseDepthRadiusToTree {
   using To = TreeXYZR;
   static constexpr const char* kName = "InverseDepthRadiusToTree";
 
+  /// The tree [anchor + m / rho, kappa / rho], generic in the scalar for automatic
+  /// differentiation. No checks: operator() validates l and returns this.
+  template <typename T>
+  Vec<4, T> convert(const Vec<Robot_::kDim, T>& /*robot*/, const Vec<7, T>& l) const {
+    Vec<4, T> tree;
+    tree << InverseDepth::point<T>(Vec<6, T>(l.template head<6>())), l[6] / l[5];
+    return tree;
+  }
+
   Vec<4> operator()(const Vec<Robot_::kDim>& /*robot*/,
                     const Vec<7>& l,
                     JacobianRef<4, Robot_::kDim> J_to_x = {},

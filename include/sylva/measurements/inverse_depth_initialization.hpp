@@ -55,6 +55,7 @@
 #include "sylva/core/error.hpp"
 #include "sylva/core/jacobian_ref.hpp"
 #include "sylva/core/quaternion.hpp"
+#include "sylva/core/scalar.hpp"
 #include "sylva/core/types.hpp"
 #include "sylva/landmarks/inverse_depth.hpp"
 #include "sylva/measurements/pinhole_camera.hpp"
@@ -113,6 +114,24 @@ struct InverseDepthInitialization {
     return Gaussian<3>::covariance(covariance);
   }
 
+  /// The landmark [t, theta, phi, rho0], generic in the scalar for automatic
+  /// differentiation. No checks: operator() validates the camera and z and returns this.
+  template <typename T>
+  Vec<6, T> initialize(const Vec<7, T>& camera, const Vec<3, T>& z) const {
+    using std::sqrt;
+    const Vec<4, T> q_raw = camera.template segment<4>(Pose3D::kQuaternion);
+    const Vec<4, T> q = q_raw / q_raw.norm();
+    const Mat<3, 3, T> R = rotationMatrix<T>(q);
+    const Vec<3, T> h_C((z[0] - camera_.cx) / camera_.fx, (z[1] - camera_.cy) / camera_.fy, T(1.0));
+    const Vec<3, T> h_W = R * h_C;
+    Vec<6, T> l;
+    l.template head<3>() = camera.template head<3>();
+    l[3] = atan2Generic(h_W[1], h_W[0]);
+    l[4] = atan2Generic(h_W[2], T(sqrt(h_W[0] * h_W[0] + h_W[1] * h_W[1])));
+    l[5] = z[2];
+    return l;
+  }
+
   /// The landmark [t, theta, phi, rho0] with J_l_x (6x7) and J_l_z (6x3).
   Vec<6> operator()(const Vec<7>& camera,
                     const Vec<3>& z,
@@ -139,11 +158,7 @@ struct InverseDepthInitialization {
            std::string(kName) +
                ": the ray through this pixel is vertical; its azimuth is undefined");
     }
-    Vec<6> l;
-    l.head<3>() = camera.head<3>();
-    l[3] = std::atan2(h_W[1], h_W[0]);
-    l[4] = std::atan2(h_W[2], r);
-    l[5] = z[2];
+    const Vec<6> l = initialize<double>(camera, z);
     if (!J_l_x && !J_l_z) return l;
 
     Mat<2, 3> J_angles_h;                          // d [theta, phi] / d h_W

@@ -274,6 +274,22 @@ struct InverseDepthRadiusInitialization {
     return Gaussian<4>::covariance(covariance);
   }
 
+  /// The landmark [t, theta, phi, rho0, kappa], generic in the scalar for automatic
+  /// differentiation: `InverseDepthInitialization::initialize` of [u, v, rho0] and kappa =
+  /// `InverseTreeWidth::radius` of the tree at unit depth seen from the camera at the origin,
+  /// the two pieces operator() is made of. No checks: operator() validates the input and the
+  /// geometry and returns the same landmark.
+  template <typename T>
+  Vec<7, T> initialize(const Vec<7, T>& camera, const Vec<4, T>& z) const {
+    const Vec<6, T> l6 = inverse_depth_.initialize<T>(camera, Vec<3, T>(z[0], z[1], z[3]));
+    Vec<7, T> camera_0 = camera;
+    camera_0.template head<3>().setZero();
+    const Vec<3, T> m = InverseDepth::direction<T>(l6[3], l6[4]);
+    Vec<7, T> l;
+    l << l6, inverse_width_.radius<T>(camera_0, m, z[2]);
+    return l;
+  }
+
   /// The landmark [t, theta, phi, rho0, kappa] with J_l_x (7x7) and J_l_z (7x4).
   Vec<7> operator()(const Vec<7>& camera,
                     const Vec<4>& z,

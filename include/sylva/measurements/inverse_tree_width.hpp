@@ -103,6 +103,15 @@ struct InverseTreeWidth {
     return sqrt(s);
   }
 
+  /// The XYZ-R landmark [base, radius(camera, base, w)], generic in the scalar for automatic
+  /// differentiation. No checks beyond `radius`'s: operator() validates and returns the same.
+  template <typename T>
+  Vec<4, T> convert(const Vec<7, T>& camera, const Vec<3, T>& base, const Vec<3, T>& z) const {
+    Vec<4, T> tree;
+    tree << base, radius<T>(camera, base, z[2]);
+    return tree;
+  }
+
   /// The XYZ-R landmark [base, r] with J_to_x (4x7), J_to_l (4x3) and J_to_z (4x3).
   Vec<4> operator()(const Vec<7>& camera,
                     const Vec<3>& base,

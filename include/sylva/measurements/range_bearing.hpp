@@ -158,6 +158,17 @@ struct InverseRangeBearing {
   explicit InverseRangeBearing(const Vec<2>& sensor_in_robot) : forward_(sensor_in_robot) {}
   const Vec<2>& mount() const { return forward_.mount(); }
 
+  /// The landmark s + r [cos(theta_r + b), sin(theta_r + b)], generic in the scalar for
+  /// automatic differentiation. No checks: operator() validates z and returns this.
+  template <typename T>
+  Vec<2, T> initialize(const Vec<3, T>& robot, const Vec<2, T>& z) const {
+    using std::cos;
+    using std::sin;
+    const T a = robot[2] + z[1];
+    const Vec<2, T> sensor = forward_.sensorPosition<T>(robot);
+    return Vec<2, T>(sensor[0] + z[0] * cos(a), sensor[1] + z[0] * sin(a));
+  }
+
   Vec<2> operator()(const Vec<3>& robot,
                     const Vec<2>& z,
                     JacobianRef<2, 3> J_l_x = {},
@@ -182,8 +193,7 @@ struct InverseRangeBearing {
       *J_l_z << c, -r * s,  //
           s, r * c;
     }
-    const Vec<2> sensor = forward_.sensorPosition<double>(robot);
-    return Vec<2>(sensor[0] + r * c, sensor[1] + r * s);
+    return initialize<double>(robot, z);
   }
 
  private:

@@ -98,6 +98,14 @@ struct InverseRangeBearingDiameter {
   explicit InverseRangeBearingDiameter(const Vec<2>& sensor_in_robot) : inverse_(sensor_in_robot) {}
   const Vec<2>& mount() const { return inverse_.mount(); }
 
+  /// The landmark [centre, d / 2], generic in the scalar for automatic differentiation. No
+  /// checks: operator() validates z and returns this.
+  template <typename T>
+  Vec<3, T> initialize(const Vec<3, T>& robot, const Vec<3, T>& z) const {
+    const Vec<2, T> centre = inverse_.initialize<T>(robot, Vec<2, T>(z.template head<2>()));
+    return Vec<3, T>(centre[0], centre[1], T(0.5) * z[2]);
+  }
+
   Vec<3> operator()(const Vec<3>& robot,
                     const Vec<3>& z,
                     JacobianRef<3, 3> J_l_x = {},
@@ -110,7 +118,7 @@ struct InverseRangeBearingDiameter {
     }
     Mat<2, 3> J_c_x;
     Mat<2, 2> J_c_z;
-    const Vec<2> centre = inverse_(robot, Vec<2>(z.head<2>()), J_c_x, J_c_z);
+    inverse_(robot, Vec<2>(z.head<2>()), J_c_x, J_c_z);
     if (J_l_x) {
       (*J_l_x).setZero();
       (*J_l_x).template topRows<2>() = J_c_x;
@@ -120,7 +128,7 @@ struct InverseRangeBearingDiameter {
       (*J_l_z).template topLeftCorner<2, 2>() = J_c_z;
       (*J_l_z)(2, 2) = 0.5;
     }
-    return Vec<3>(centre[0], centre[1], 0.5 * z[2]);
+    return initialize<double>(robot, z);
   }
 
  private:
