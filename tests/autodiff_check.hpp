@@ -132,33 +132,37 @@ void checkAgainstAutoDiff(const std::string& layout,
             .all());
 }
 
+/// [J_a | J_b] of a function of two inputs against autodiff of `g(a, b)`, a generic callable
+/// over Vec<A, T> and Vec<B, T>, at [a; b]; `value` is what the model's operator() returned.
+/// The name says "[J_a | J_b] of Model (a columns 0-.., b from ..)".
+template <int Out, int A, int B, typename Generic>
+void checkTwoInputsAgainstAutoDiff(const std::string& blocks, const char* model, const char* a_name,
+                                   const char* b_name, const sylva::Mat<Out, A>& J_a, const sylva::Mat<Out, B>& J_b,
+                                   const sylva::Vec<Out>& value, const sylva::Vec<A>& a, const sylva::Vec<B>& b,
+                                   const Generic& g) {
+  sylva::Mat<Out, A + B> analytic;
+  analytic << J_a, J_b;
+  sylva::Vec<A + B> v;
+  v << a, b;
+  const auto f = [&](const auto& s) {
+    using T = typename std::decay_t<decltype(s)>::Scalar;
+    return g(sylva::Vec<A, T>(s.template head<A>()), sylva::Vec<B, T>(s.template tail<B>()));
+  };
+  checkAgainstAutoDiff<Out, A + B>(blocks + " of " + model + " (" + a_name + " columns 0-" + std::to_string(A - 1) +
+                                       ", " + b_name + " from " + std::to_string(A) + ")",
+                                   analytic, value, f, v);
+}
+
 /// A measurement model's [J_z_x | J_z_l] against autodiff of its predict<T> over [robot; landmark].
 template <typename Model>
 void checkMeasurementAgainstAutoDiff(const Model& model,
                                      const sylva::Vec<Model::Robot::kDim>& robot,
                                      const sylva::Vec<Model::Landmark::kDim>& landmark) {
-  constexpr int R = Model::Robot::kDim;
-  constexpr int L = Model::Landmark::kDim;
-  constexpr int M = Model::kDim;
-  sylva::Mat<M, R> J_z_x;
-  sylva::Mat<M, L> J_z_l;
-  const sylva::Vec<M> z = model(robot, landmark, J_z_x, J_z_l);
-  sylva::Mat<M, R + L> analytic;
-  analytic << J_z_x, J_z_l;
-  sylva::Vec<R + L> v;
-  v << robot, landmark;
-  const auto f = [&](const auto& s) {
-    using T = typename std::decay_t<decltype(s)>::Scalar;
-    return model.template predict<T>(sylva::Vec<R, T>(s.template head<R>()),
-                                     sylva::Vec<L, T>(s.template tail<L>()));
-  };
-  checkAgainstAutoDiff<M, R + L>(std::string("[J_z_x | J_z_l] of ") + Model::kName +
-                                     " (robot columns 0-" + std::to_string(R - 1) +
-                                     ", landmark from " + std::to_string(R) + ")",
-                                 analytic,
-                                 z,
-                                 f,
-                                 v);
+  sylva::Mat<Model::kDim, Model::Robot::kDim> J_z_x;
+  sylva::Mat<Model::kDim, Model::Landmark::kDim> J_z_l;
+  const sylva::Vec<Model::kDim> z = model(robot, landmark, J_z_x, J_z_l);
+  checkTwoInputsAgainstAutoDiff("[J_z_x | J_z_l]", Model::kName, "robot", "landmark", J_z_x, J_z_l, z, robot, landmark,
+                                [&](const auto& x, const auto& l) { return model.predict(x, l); });
 }
 
 /// An inverse (initialization) model's [J_l_x | J_l_z] against autodiff of its
@@ -167,28 +171,11 @@ template <typename Inverse>
 void checkInverseAgainstAutoDiff(const Inverse& inverse,
                                  const sylva::Vec<Inverse::Robot::kDim>& robot,
                                  const sylva::Vec<Inverse::kMeasurementDim>& z) {
-  constexpr int R = Inverse::Robot::kDim;
-  constexpr int Z = Inverse::kMeasurementDim;
-  constexpr int L = Inverse::Landmark::kDim;
-  sylva::Mat<L, R> J_l_x;
-  sylva::Mat<L, Z> J_l_z;
-  const sylva::Vec<L> l = inverse(robot, z, J_l_x, J_l_z);
-  sylva::Mat<L, R + Z> analytic;
-  analytic << J_l_x, J_l_z;
-  sylva::Vec<R + Z> v;
-  v << robot, z;
-  const auto f = [&](const auto& s) {
-    using T = typename std::decay_t<decltype(s)>::Scalar;
-    return inverse.template initialize<T>(sylva::Vec<R, T>(s.template head<R>()),
-                                          sylva::Vec<Z, T>(s.template tail<Z>()));
-  };
-  checkAgainstAutoDiff<L, R + Z>(std::string("[J_l_x | J_l_z] of ") + Inverse::kName +
-                                     " (robot columns 0-" + std::to_string(R - 1) + ", z from " +
-                                     std::to_string(R) + ")",
-                                 analytic,
-                                 l,
-                                 f,
-                                 v);
+  sylva::Mat<Inverse::Landmark::kDim, Inverse::Robot::kDim> J_l_x;
+  sylva::Mat<Inverse::Landmark::kDim, Inverse::kMeasurementDim> J_l_z;
+  const sylva::Vec<Inverse::Landmark::kDim> l = inverse(robot, z, J_l_x, J_l_z);
+  checkTwoInputsAgainstAutoDiff("[J_l_x | J_l_z]", Inverse::kName, "robot", "z", J_l_x, J_l_z, l, robot, z,
+                                [&](const auto& x, const auto& m) { return inverse.initialize(x, m); });
 }
 
 /// A landmark conversion's [J_to_x | J_to_l] against autodiff of its convert<T> over
@@ -197,28 +184,11 @@ template <typename Conversion>
 void checkConversionAgainstAutoDiff(const Conversion& conversion,
                                     const sylva::Vec<Conversion::Robot::kDim>& robot,
                                     const sylva::Vec<Conversion::From::kDim>& landmark) {
-  constexpr int R = Conversion::Robot::kDim;
-  constexpr int F = Conversion::From::kDim;
-  constexpr int To = Conversion::To::kDim;
-  sylva::Mat<To, R> J_x;
-  sylva::Mat<To, F> J_l;
-  const sylva::Vec<To> converted = conversion(robot, landmark, J_x, J_l);
-  sylva::Mat<To, R + F> analytic;
-  analytic << J_x, J_l;
-  sylva::Vec<R + F> v;
-  v << robot, landmark;
-  const auto f = [&](const auto& s) {
-    using T = typename std::decay_t<decltype(s)>::Scalar;
-    return conversion.template convert<T>(sylva::Vec<R, T>(s.template head<R>()),
-                                          sylva::Vec<F, T>(s.template tail<F>()));
-  };
-  checkAgainstAutoDiff<To, R + F>(std::string("[J_to_x | J_to_l] of ") + Conversion::kName +
-                                      " (robot columns 0-" + std::to_string(R - 1) +
-                                      ", landmark from " + std::to_string(R) + ")",
-                                  analytic,
-                                  converted,
-                                  f,
-                                  v);
+  sylva::Mat<Conversion::To::kDim, Conversion::Robot::kDim> J_x;
+  sylva::Mat<Conversion::To::kDim, Conversion::From::kDim> J_l;
+  const sylva::Vec<Conversion::To::kDim> converted = conversion(robot, landmark, J_x, J_l);
+  checkTwoInputsAgainstAutoDiff("[J_to_x | J_to_l]", Conversion::kName, "robot", "landmark", J_x, J_l, converted,
+                                robot, landmark, [&](const auto& x, const auto& l) { return conversion.convert(x, l); });
 }
 
 }  // namespace sylva_test
