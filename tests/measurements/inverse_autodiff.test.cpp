@@ -24,6 +24,7 @@
 
 #include "autodiff_check.hpp"
 #include "camera_pose.hpp"
+#include "tree_width_geometries.hpp"
 
 // Own namespace: the tests of a folder are compiled as one unity translation unit.
 namespace unity_measurements_inverse_autodiff {
@@ -116,64 +117,10 @@ TEST_CASE("InverseDepthInitialization Jacobians equal automatic differentiation"
   }
 }
 
-struct TreeCase {
-  const char* name;
-  Vec<7> camera;
-  Vec<4> tree;  // XYZ-R
-};
-
-/// Cameras and trees valid for TreeWidth, ordinary and awkward.
-std::vector<TreeCase> treeCases() {
-  const Vec<3> eye(1.0, -2.0, 1.6);
-  const Vec<3> far(1e5, 1e5, 1.6);
-  return {
-      {"ordinary", lookAtPose(eye, Vec<3>(6.0, 1.0, 0.5)), Vec<4>(6.0, 1.0, 0.2, 0.3)},
-      {"looking straight down",
-       lookAtPose(Vec<3>(2.0, 0.0, 5.0), Vec<3>(2.0, 0.0, 0.0)),
-       Vec<4>(2.5, 1.0, 0.0, 0.4)},
-      {"looking steeply down",
-       lookAtPose(Vec<3>(2.0, 0.0, 5.0), Vec<3>(2.0, 0.3, 0.0)),
-       Vec<4>(2.0, 1.0, 0.0, 0.4)},
-      {"a thin tree 40 m away",
-       lookAtPose(eye, Vec<3>(40.0, 10.0, 0.0)),
-       Vec<4>(40.0, 10.0, 0.0, 0.1)},
-      {"a wide trunk 1.5 m away",
-       lookAtPose(eye, Vec<3>(2.5, -2.0, 0.5)),
-       Vec<4>(2.5, -2.0, 0.0, 0.6)},
-      {"tree near the image border",
-       lookAtPose(eye, Vec<3>(8.0, 4.4, 0.8)),
-       Vec<4>(6.0, 2.8, 0.0, 0.3)},
-      {"camera rolled 90 deg",
-       lookAtPose(eye, Vec<3>(6.0, 1.0, 0.5), 0.5 * kPi),
-       Vec<4>(6.0, 1.0, 0.2, 0.3)},
-      {"quaternion norm 0.05",
-       lookAtPose(eye, Vec<3>(6.0, 1.0, 0.5), 0.3, 0.05),
-       Vec<4>(6.0, 1.0, 0.2, 0.3)},
-      {"quaternion norm 40",
-       lookAtPose(eye, Vec<3>(6.0, 1.0, 0.5), 0.3, 40.0),
-       Vec<4>(6.0, 1.0, 0.2, 0.3)},
-      {"camera 1 cm above the base plane",
-       lookAtPose(Vec<3>(0.0, 0.0, 0.21), Vec<3>(5.0, 0.5, 0.3)),
-       Vec<4>(5.0, 0.5, 0.2, 0.25)},
-      {"camera below the base plane",
-       lookAtPose(Vec<3>(0.0, 0.0, -1.0), Vec<3>(5.0, 0.5, 0.0)),
-       Vec<4>(5.0, 0.5, 0.2, 0.25)},
-      {"tree in the -x direction (azimuth near +pi)",
-       lookAtPose(Vec<3>(10.0, 0.0, 1.5), Vec<3>(4.0, 1e-9, 0.0)),
-       Vec<4>(4.0, 1e-9, 0.0, 0.3)},
-      {"tree in the -x direction (azimuth near -pi)",
-       lookAtPose(Vec<3>(10.0, 0.0, 1.5), Vec<3>(4.0, -1e-9, 0.0)),
-       Vec<4>(4.0, -1e-9, 0.0, 0.3)},
-      {"camera 100 km from the origin",
-       lookAtPose(far, far + Vec<3>(6.0, 2.0, -1.2)),
-       Vec<4>(far.x() + 6.0, far.y() + 2.0, 0.0, 0.3)},
-  };
-}
-
 TEST_CASE("InverseDepthRadiusInitialization Jacobians equal automatic differentiation",
           "[measurements][idr][idr_init][jacobian][autodiff]") {
   const InverseDepthRadiusInitialization init(kCamera);
-  for (const TreeCase& c : treeCases()) {
+  for (const sylva_test::TreeWidthGeometry& c : sylva_test::treeWidthGeometries()) {
     const Vec<3> z = TreeWidth(kCamera)(c.camera, c.tree);
     for (const double rho0 : {0.1, 0.0, 2.0}) {
       INFO(c.name << ", rho0 " << rho0);
@@ -185,7 +132,7 @@ TEST_CASE("InverseDepthRadiusInitialization Jacobians equal automatic differenti
 TEST_CASE("InverseTreeWidth Jacobians equal automatic differentiation at awkward geometry",
           "[measurements][inverse_tree_width][jacobian][autodiff]") {
   const InverseTreeWidth inverse(kCamera);
-  for (const TreeCase& c : treeCases()) {
+  for (const sylva_test::TreeWidthGeometry& c : sylva_test::treeWidthGeometries()) {
     INFO(c.name);
     const Vec<3> base = c.tree.head<3>();
     const Vec<3> z = TreeWidth(kCamera)(c.camera, c.tree);

@@ -6,6 +6,7 @@
 #include "autodiff_check.hpp"
 #include "camera_pose.hpp"
 #include "sylva_catch.hpp"
+#include "tree_width_geometries.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -247,59 +248,12 @@ TEST_CASE("TreeWidth matches a brute-force projection of the base circle",
   CHECK(worst[1] <= 1e-8);
 }
 
-namespace {
-struct Geometry {
-  const char* name;
-  Vec<7> camera;
-  Vec<4> tree;
-  double tolerance = 1e-6;
-};
-
-std::vector<Geometry> jacobianGeometries() {
-  const Vec<3> eye(1.0, -2.0, 1.6);
-  return {
-      {"ordinary", lookAtPose(eye, Vec<3>(6.0, 1.0, 0.5)), treeAt(6.0, 1.0, 0.2, 0.3)},
-      {"camera 1 mm above the base plane",
-       lookAtPose(Vec<3>(0.0, 0.0, 0.201), Vec<3>(5.0, 0.5, 0.3)),
-       treeAt(5.0, 0.5, 0.2, 0.25)},
-      {"camera 1 mm below the base plane",
-       lookAtPose(Vec<3>(0.0, 0.0, 0.199), Vec<3>(5.0, 0.5, 0.3)),
-       treeAt(5.0, 0.5, 0.2, 0.25)},
-      {"camera exactly on the base plane",
-       lookAtPose(Vec<3>(0.0, 0.0, 0.2), Vec<3>(5.0, 0.5, 0.6)),
-       treeAt(5.0, 0.5, 0.2, 0.25)},
-      {"tree near the image border",
-       lookAtPose(eye, Vec<3>(8.0, 4.4, 0.8)),
-       treeAt(6.0, 2.8, 0.0, 0.3)},
-      {"large radius, close", lookAtPose(eye, Vec<3>(4.0, -2.0, 0.5)), treeAt(4.0, -2.0, 0.0, 2.0)},
-      {"small radius, far", lookAtPose(eye, Vec<3>(40.0, 10.0, 0.0)), treeAt(40.0, 10.0, 0.0, 0.01)},
-      {"camera rolled 90 deg about the optical axis",
-       lookAtPose(eye, Vec<3>(6.0, 1.0, 0.5), kPiD / 2),
-       treeAt(6.0, 1.0, 0.2, 0.3)},
-      {"camera rolled 90 deg, looking down",
-       lookAtPose(eye, Vec<3>(3.0, -1.0, -1.0), -kPiD / 2),
-       treeAt(3.5, -1.0, 0.0, 0.3)},
-      {"looking straight down on the tree",
-       lookAtPose(Vec<3>(2.0, 0.0, 5.0), Vec<3>(2.0, 1e-3, 0.0)),
-       treeAt(2.0, 1.0, 0.0, 0.4)},
-      {"quaternion not unit (norm 1.7)",
-       lookAtPose(eye, Vec<3>(6.0, 1.0, 0.5), 0.4, 1.7),
-       treeAt(6.0, 1.0, 0.2, 0.3)},
-      {"quaternion not unit (norm 0.3)",
-       lookAtPose(eye, Vec<3>(6.0, 1.0, 0.5), -0.4, 0.3),
-       treeAt(6.0, 1.0, 0.2, 0.3)},
-      {"far from the origin",
-       lookAtPose(Vec<3>(500.0, -300.0, 20.0), Vec<3>(510.0, -295.0, 18.0)),
-       treeAt(510.0, -295.0, 18.0, 0.5)},
-  };
-}
-}  // namespace
 
 TEST_CASE("TreeWidth Jacobians match numerical differentiation", "[measurements][jacobian]") {
   const TreeWidth model(kCamera);
-  for (const Geometry& g : jacobianGeometries()) {
+  for (const sylva_test::TreeWidthGeometry& g : sylva_test::treeWidthGeometries()) {
     INFO(g.name);
-    const auto report = testing::checkMeasurementJacobians(model, g.camera, g.tree, g.tolerance);
+    const auto report = testing::checkMeasurementJacobians(model, g.camera, g.tree);
     INFO(report.message());
     CHECK(report.ok);
     Mat<3, 7> J_z_x;
@@ -315,7 +269,7 @@ TEST_CASE("TreeWidth Jacobians match numerical differentiation", "[measurements]
 TEST_CASE("TreeWidth analytic Jacobians equal automatic differentiation",
           "[measurements][jacobian]") {
   const TreeWidth model(kCamera);
-  for (const Geometry& g : jacobianGeometries()) {
+  for (const sylva_test::TreeWidthGeometry& g : sylva_test::treeWidthGeometries()) {
     INFO(g.name);
     // Entry by entry, relative to each entry's own scale, and the values (tests/autodiff_check.hpp).
     sylva_test::checkMeasurementAgainstAutoDiff(model, g.camera, g.tree);
