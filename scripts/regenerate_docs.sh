@@ -64,6 +64,7 @@ fi
 
 if ((pages)); then
   # The long generators, each of which writes its own page (and says so at its top).
+  bash "$repo/scripts/run_study.sh" tune
   bash "$repo/scripts/run_study.sh"
   bash "$repo/scripts/consistency_report.sh"
   python3 "$repo/scripts/forest_slam_seeds.py" --build-dir "$(dirname "$bin_dir")"

@@ -8,6 +8,9 @@
 //   tree_width_study --shard 2/3 --out part2.jsonl   one shard of the runs, no report
 //   tree_width_study merge --out all.jsonl part*.jsonl
 //   tree_width_study report all.jsonl                the report from merged runs
+//   tree_width_study tune                            each pipeline's best setting, on maps the
+//                                                    sweeps never score (docs/study/tuning.md)
+//   tree_width_study --resume runs.jsonl             runs only the jobs the file lacks
 //
 // A run is a pure function of its configuration and the study seed (see study.hpp), so the
 // merged shards are byte-identical to a single-process run of the same sweep, whatever the
@@ -33,6 +36,7 @@
 #include "results_md.hpp"
 #include "../common/run_pool.hpp"
 #include "study.hpp"
+#include "tuning.hpp"
 
 #ifndef SYLVA_SOURCE_DIR
 #define SYLVA_SOURCE_DIR "."
@@ -116,7 +120,8 @@ void writeLines(const std::vector<nlohmann::json>& lines, const std::string& pat
 void writeReport(const std::vector<nlohmann::json>& lines,
                  const fs::path& docs,
                  const std::string& command,
-                 const std::string& plan) {
+                 const std::string& plan,
+                 const TunedSettings& tuning) {
   const fs::path images = docs / "images";
   const fs::path study = docs / "study";
   // gnuplot's scripts (with the data inline) go to a scratch directory, not into docs/.
@@ -133,7 +138,7 @@ void writeReport(const std::vector<nlohmann::json>& lines,
     plotGains(data, occlusion, images / ("study_gain_" + occlusion + ".svg"), work);
   }
   plotNees(data, images / "study_nees.svg", work, dt_s);
-  writeResultsMarkdown(data, docs / "results.md", "images", command, plan, dt_s);
+  writeResultsMarkdown(data, docs / "results.md", "images", command, plan, dt_s, tuning);
   std::cerr << "tree_width_study: wrote " << (docs / "results.md").string() << ", "
             << (study / "summary.csv").string() << " and " << (images / "study_*.svg").string()
             << " from " << lines.size() << " runs\n";
@@ -156,7 +161,8 @@ std::string describePlan(const StudyPlan& p, bool quick, std::size_t runs) {
      << " noise draws per map, " << p.density_noise_px
      << " px. Filter noise in the sweeps: " << p.pixel_scale << " x sigma on u, v and "
      << p.width_scale
-     << " x sigma on w (TreeSlamOptions' defaults). Each configuration is run with occlusions "
+     << " x sigma on w (TreeSlamOptions' defaults); then again with each pipeline's own best "
+        "setting where it differs (study/tuning.md). Each configuration is run with occlusions "
         "ignored and with only non-occluded trees. Built with " __VERSION__
         ": the runs are bit-identical for one build whatever the threads and shards; another "
         "compiler changes the last bits of the numbers (about 1e-15 relative), which can tip a "
@@ -209,7 +215,28 @@ int main(int argc, char** argv) {
          "--frames", max_frames, "stop each run after this many frames (for trying things; 0: all)")
       ->capture_default_str();
 
+  std::string tuned_path;
+  app.add_option("--tuned",
+                 tuned_path,
+                 "each pipeline's best setting, from `tune` (default: <docs>/study/tuned_settings.json; "
+                 "'none': run the shared setting only)");
+  std::string resume_path;
+  app.add_option("--resume",
+                 resume_path,
+                 "a run file of the same sweep: keep its runs and run only the jobs it lacks")
+      ->check(CLI::ExistingFile);
+
+  bool list_jobs = false;
+  app.add_flag("--list", list_jobs, "print how many runs the sweep has, by sweep, setting, pipeline and occlusion, and exit");
+
   app.fallthrough();  // --docs and friends also after a subcommand
+  auto* tune = app.add_subcommand(
+      "tune", "choose each pipeline's best setting on tuning maps (writes study/tuned_settings.json, study/tuning.md)");
+  std::string tune_out;
+  tune->add_option("--out", tune_out, "the tuning runs (default: tree_width_study_tuning.jsonl)");
+  std::vector<std::string> tune_inputs;
+  tune->add_option("--from", tune_inputs, "choose from these tuning run files instead of running")
+      ->check(CLI::ExistingFile);
   auto* merge = app.add_subcommand("merge", "merge shards' run files into one, in job order");
   std::vector<std::string> merge_inputs;
   std::string merge_out;
@@ -253,26 +280,91 @@ int main(int argc, char** argv) {
                   report_command.empty() ? "tree_width_study report <runs.jsonl>" : report_command,
                   report_plan.empty()
                       ? "**This report** covers " + std::to_string(lines.size()) + " runs."
-                      : describePlan(plan, report_plan == "quick", lines.size()));
+                      : describePlan(plan, report_plan == "quick", lines.size()),
+                  tuned_path == "none" ? TunedSettings{}
+                                       : readTunedSettings(tuned_path.empty()
+                                                               ? (fs::path(docs) / "study" / "tuned_settings.json").string()
+                                                               : tuned_path));
+      return 0;
+    }
+
+    StudyPlan plan = quick ? StudyPlan::quick() : StudyPlan{};
+    plan.seed = seed;
+    const FilterSetting shared{plan.pixel_scale, plan.width_scale, Job{}.tree_position_sigma_m};
+    if (*tune) {
+      TuningPlan tplan = quick ? TuningPlan::quick() : TuningPlan{};
+      tplan.seed = seed;
+      std::vector<nlohmann::json> lines;
+      if (!tune_inputs.empty()) {
+        lines = mergeLines(readLines(tune_inputs));
+      } else {
+        const std::vector<Job> jobs = enumerateTuningJobs(tplan, shared);
+        std::cerr << "tree_width_study tune: " << jobs.size() << " runs on " << threads << " threads\n";
+        lines = sylva_examples::runAll<nlohmann::json>(static_cast<int>(jobs.size()), threads, [&](int i) {
+          return runJob(jobs[i], seed, 0, max_frames);
+        });
+        writeLines(lines, tune_out.empty() ? "tree_width_study_tuning.jsonl" : tune_out);
+      }
+      std::string command = "bash scripts/run_study.sh tune";
+      if (quick) command += " --quick";
+      if (seed != 1) command += " --seed " + std::to_string(seed);
+      const TuningResult result = scoreTuning(lines);
+      const fs::path study_dir = fs::path(docs) / "study";
+      fs::create_directories(study_dir);
+      writeTunedSettings(result, (study_dir / "tuned_settings.json").string(), command);
+      writeTuningMarkdown(result, tplan, shared, (study_dir / "tuning.md").string(), command);
+      std::cerr << "tree_width_study tune: wrote " << (study_dir / "tuned_settings.json").string()
+                << " and tuning.md from " << lines.size() << " runs\n";
       return 0;
     }
 
     const Shard shard = parseShard(shard_text);
-    StudyPlan plan = quick ? StudyPlan::quick() : StudyPlan{};
-    plan.seed = seed;
-    std::vector<Job> all = enumerateJobs(plan);
+    if (tuned_path.empty()) tuned_path = (fs::path(docs) / "study" / "tuned_settings.json").string();
+    const TunedSettings tuned = tuned_path == "none" ? TunedSettings{} : readTunedSettings(tuned_path);
+    if (tuned.empty())
+      std::cerr << "tree_width_study: no tuned settings (" << tuned_path
+                << "): every pipeline runs the shared setting only\n";
+    std::vector<Job> all = enumerateJobs(plan, tuned.empty() ? nullptr : &tuned);
+    if (list_jobs) {
+      std::map<std::string, int> counts;
+      for (const Job& j : all)
+        ++counts[j.sweep + " " + j.setting + " " + forest_slam::pipelineName(j.pipeline) + " " +
+                 occlusionKey(j.occlusion)];
+      for (const auto& [what, n] : counts) std::cout << what << " " << n << "\n";
+      return 0;
+    }
     if (limit > 0 && static_cast<int>(all.size()) > limit)
       all.resize(static_cast<std::size_t>(limit));
+    // --resume: the runs of an earlier (interrupted or shorter) run file are kept when they are
+    // the same job; a run is a pure function of its job, so the result is the same file.
+    std::map<int, nlohmann::json> kept;
+    if (!resume_path.empty())
+      for (auto& j : readLines({resume_path})) {
+        const int index = j.at("job").get<int>();
+        if (index >= static_cast<int>(all.size()) || j.at("sweep") != all[index].sweep ||
+            j.at("pipeline") != forest_slam::pipelineName(all[index].pipeline) ||
+            j.at("map") != all[index].map)
+          throw std::runtime_error(resume_path + ": job " + std::to_string(index) +
+                                   " is not the job of this sweep with that index (other flags?)");
+        kept[index] = std::move(j);
+      }
     std::vector<Job> mine;
     for (const Job& j : all)
-      if (j.index % shard.n == shard.k - 1) mine.push_back(j);
+      if (j.index % shard.n == shard.k - 1 && !kept.count(j.index)) mine.push_back(j);
     std::cerr << "tree_width_study: " << mine.size() << " of " << all.size() << " runs (shard "
-              << shard.k << "/" << shard.n << ") on " << threads << " threads\n";
+              << shard.k << "/" << shard.n << ") on " << threads << " threads";
+    if (!kept.empty()) std::cerr << ", " << kept.size() << " kept from " << resume_path;
+    std::cerr << "\n";
     const auto start = std::chrono::steady_clock::now();
-    const std::vector<nlohmann::json> lines =
+    std::vector<nlohmann::json> lines =
         sylva_examples::runAll<nlohmann::json>(static_cast<int>(mine.size()), threads, [&](int i) {
           return runJob(mine[i], seed, nees_every, max_frames);
         });
+    if (!kept.empty()) {
+      for (auto& [index, j] : kept)
+        if (index % shard.n == shard.k - 1) lines.push_back(std::move(j));
+      lines = mergeLines(std::move(lines));
+    }
     writeLines(lines, out_path);
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -286,7 +378,8 @@ int main(int argc, char** argv) {
       writeReport(lines,
                   docs,
                   command,
-                  describePlan(plan, quick, lines.size()));
+                  describePlan(plan, quick, lines.size()),
+                  tuned);
     }
   } catch (const std::exception& e) {
     std::cerr << "tree_width_study: " << e.what() << "\n";

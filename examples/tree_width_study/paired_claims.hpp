@@ -39,6 +39,9 @@ struct PairKey {
   }
 };
 
+/// A run of a pipeline at its tuned setting is filed as "<pipeline>/tuned".
+constexpr const char* kTunedSuffix = "/tuned";
+
 /// pair -> pipeline -> outcome.
 using PairedRuns = std::map<PairKey, std::map<std::string, RunOutcome>>;
 
@@ -58,7 +61,9 @@ inline void addPairedRun(PairedRuns& paired, const nlohmann::json& j) {
   r.converged = j.at("converged").get<bool>();
   const auto it = j.find("trajectory_error");
   r.et = it == j.end() || it->is_null() ? 0.0 : it->get<double>();
-  paired[k][j.at("pipeline").get<std::string>()] = r;
+  const auto setting = j.find("setting");
+  const bool tuned = setting != j.end() && *setting == "tuned";
+  paired[k][j.at("pipeline").get<std::string>() + (tuned ? kTunedSuffix : "")] = r;
 }
 
 inline std::string format(const char* spec, double v) {
@@ -88,13 +93,25 @@ struct PairedComparison {
   std::map<std::string, std::string> figures;  ///< named figures for results.figures.json
 };
 
-/// Convergence of `pipeline` against "no width" over the pairs that `take` keeps.
+/// The run of `pipeline` in one pair: at its tuned setting when `tuned` and it has one there,
+/// else at the shared setting.
+inline std::map<std::string, RunOutcome>::const_iterator findRun(const std::map<std::string, RunOutcome>& runs,
+                                                                  const std::string& pipeline, bool tuned) {
+  if (tuned) {
+    const auto t = runs.find(pipeline + kTunedSuffix);
+    if (t != runs.end()) return t;
+  }
+  return runs.find(pipeline);
+}
+
+/// Convergence of `pipeline` against "no width" over the pairs that `take` keeps (`tuned`: each
+/// at its own best setting).
 inline PairedComparison compareConvergence(const PairedRuns& paired, const std::string& pipeline,
-                                           const std::function<bool(const PairKey&)>& take) {
+                                           const std::function<bool(const PairKey&)>& take, bool tuned = false) {
   long n = 0, with = 0, without = 0, only_with = 0, only_without = 0;
   for (const auto& [k, runs] : paired) {
     if (!take(k)) continue;
-    const auto a = runs.find(pipeline), b = runs.find("none");
+    const auto a = findRun(runs, pipeline, tuned), b = findRun(runs, "none", tuned);
     if (a == runs.end() || b == runs.end()) continue;
     ++n;
     with += a->second.converged;
@@ -119,11 +136,11 @@ inline PairedComparison compareConvergence(const PairedRuns& paired, const std::
 
 /// e_t of `pipeline` against "no width" on the pairs that `take` keeps and that converged in both.
 inline PairedComparison compareTrajectoryError(const PairedRuns& paired, const std::string& pipeline,
-                                               const std::function<bool(const PairKey&)>& take) {
+                                               const std::function<bool(const PairKey&)>& take, bool tuned = false) {
   std::vector<double> d;
   for (const auto& [k, runs] : paired) {
     if (!take(k)) continue;
-    const auto a = runs.find(pipeline), b = runs.find("none");
+    const auto a = findRun(runs, pipeline, tuned), b = findRun(runs, "none", tuned);
     if (a == runs.end() || b == runs.end() || !a->second.converged || !b->second.converged) continue;
     d.push_back(a->second.et - b->second.et);
   }

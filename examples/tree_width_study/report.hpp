@@ -29,6 +29,7 @@
 #include <sylva/core/error.hpp>
 
 #include "paired_claims.hpp"
+#include "study.hpp"
 
 namespace tree_width_study {
 
@@ -80,6 +81,7 @@ struct StudyData {
   std::map<std::string, std::vector<std::vector<double>>> nees;
   int nees_every = 0;
   PairedRuns paired;  ///< the noise and density runs, grouped by identical measurements
+  TunedSettings tuned;  ///< the settings of the "tuned" runs, where a pipeline has them
   double nees_level = 0.0;
   int runs = 0;
 };
@@ -93,6 +95,18 @@ inline StudyData aggregate(const std::vector<nlohmann::json>& lines) {
   for (const auto& j : lines) {
     ++data.runs;
     addPairedRun(data.paired, j);
+    // The tables, figures and NEES describe the shared setting; the tuned runs enter the
+    // paired comparisons only (and the tuned-settings table).
+    const auto setting = j.find("setting");
+    if (setting != j.end() && *setting == "tuned") {
+      Key k;
+      k.sweep = j.at("sweep").get<std::string>();
+      k.occlusion = j.at("occlusion").get<std::string>();
+      k.pipeline = j.at("pipeline").get<std::string>();
+      data.tuned[{k.pipeline, k.occlusion}] = {j.at("pixel_scale").get<double>(), j.at("width_scale").get<double>(),
+                                               j.at("tree_position_sigma_m").get<double>()};
+      continue;
+    }
     Key k;
     k.sweep = j.at("sweep").get<std::string>();
     k.occlusion = j.at("occlusion").get<std::string>();

@@ -16,6 +16,9 @@
 
 #include <cmath>
 #include <cstdint>
+#include <functional>
+#include <map>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -46,7 +49,31 @@ struct Job {
   double pixel_sigma_px = 1.0;  ///< simulated noise on u, v and w
   double pixel_scale = 1.5;     ///< the filter's sigma on u, v = pixel_scale * pixel_sigma_px
   double width_scale = 1.0;     ///< the filter's sigma on w = width_scale * pixel_sigma_px
+  /// XYZ -> XYZ-R once the tree position's largest sigma is below this (TreeSlamOptions).
+  double tree_position_sigma_m = forest_slam::TreeSlamOptions{}.tree_position_sigma_m;
+  /// "default": the filter settings every pipeline shares; "tuned": the pipeline's own best
+  /// setting, chosen by `tree_width_study tune` on maps the sweeps never score (tuning.hpp).
+  std::string setting = "default";
 };
+
+/// A pipeline's filter settings in the noise and density sweeps.
+struct FilterSetting {
+  double pixel_scale = 1.5;
+  double width_scale = 1.0;
+  double tree_position_sigma_m = forest_slam::TreeSlamOptions{}.tree_position_sigma_m;
+  bool operator==(const FilterSetting& o) const {
+    return pixel_scale == o.pixel_scale && width_scale == o.width_scale &&
+           tree_position_sigma_m == o.tree_position_sigma_m;
+  }
+  bool operator!=(const FilterSetting& o) const { return !(*this == o); }
+};
+
+/// (pipeline name, occlusion key) -> the best setting found by the tuning sweep.
+using TunedSettings = std::map<std::pair<std::string, std::string>, FilterSetting>;
+
+inline const char* occlusionKey(bool occlusion) {
+  return occlusion ? "non_occluded_only" : "ignored";
+}
 
 /// The sizes of the three sweeps.
 struct StudyPlan {
@@ -83,8 +110,11 @@ struct StudyPlan {
   }
 };
 
-/// All runs of `plan`, in their fixed order.
-inline std::vector<Job> enumerateJobs(const StudyPlan& plan) {
+/// All runs of `plan`, in their fixed order. With `tuned`, the noise and density sweeps are
+/// run a second time for every pipeline and occlusion mode whose tuned setting differs from the
+/// shared default; those runs come last (setting "tuned"), so the default runs keep their
+/// indices whether or not a tuning exists.
+inline std::vector<Job> enumerateJobs(const StudyPlan& plan, const TunedSettings* tuned = nullptr) {
   std::vector<Job> jobs;
   const auto push = [&jobs](Job j) {
     j.index = static_cast<int>(jobs.size());
@@ -111,41 +141,60 @@ inline std::vector<Job> enumerateJobs(const StudyPlan& plan) {
           }
     }
   }
-  for (bool occlusion : {false, true})
-    for (WidthPipeline pipeline : kAllPipelines)
-      for (double sigma : plan.noise_levels_px)
-        for (int m = 0; m < plan.maps; ++m)
-          for (int d = 0; d < plan.noise_draws; ++d) {
-            Job j;
-            j.sweep = "noise";
-            j.pipeline = pipeline;
-            j.occlusion = occlusion;
-            j.map = m;
-            j.draw = d;
-            j.pixel_sigma_px = sigma;
-            j.pixel_scale = plan.pixel_scale;
-            j.width_scale = plan.width_scale;
-            push(j);
-          }
-  for (bool occlusion : {false, true})
-    for (WidthPipeline pipeline : kAllPipelines)
-      for (double f : plan.densities)
-        for (int m = 0; m < plan.maps; ++m)
-          for (int r = 0; r < (f < 1.0 ? plan.removals : 1); ++r)
-            for (int d = 0; d < plan.density_draws; ++d) {
+  const FilterSetting shared{plan.pixel_scale, plan.width_scale, Job{}.tree_position_sigma_m};
+  const auto sweeps = [&](const std::string& setting_name,
+                          const std::function<const FilterSetting*(WidthPipeline, bool)>& setting_of) {
+    const auto apply = [&](Job& j) {
+      const FilterSetting* f = setting_of(j.pipeline, j.occlusion);
+      j.pixel_scale = f->pixel_scale;
+      j.width_scale = f->width_scale;
+      j.tree_position_sigma_m = f->tree_position_sigma_m;
+      j.setting = setting_name;
+    };
+    for (bool occlusion : {false, true})
+      for (WidthPipeline pipeline : kAllPipelines) {
+        if (!setting_of(pipeline, occlusion)) continue;
+        for (double sigma : plan.noise_levels_px)
+          for (int m = 0; m < plan.maps; ++m)
+            for (int d = 0; d < plan.noise_draws; ++d) {
               Job j;
-              j.sweep = "density";
+              j.sweep = "noise";
               j.pipeline = pipeline;
               j.occlusion = occlusion;
               j.map = m;
               j.draw = d;
-              j.removal = f < 1.0 ? r : -1;
-              j.density = f;
-              j.pixel_sigma_px = plan.density_noise_px;
-              j.pixel_scale = plan.pixel_scale;
-              j.width_scale = plan.width_scale;
+              j.pixel_sigma_px = sigma;
+              apply(j);
               push(j);
             }
+      }
+    for (bool occlusion : {false, true})
+      for (WidthPipeline pipeline : kAllPipelines) {
+        if (!setting_of(pipeline, occlusion)) continue;
+        for (double f : plan.densities)
+          for (int m = 0; m < plan.maps; ++m)
+            for (int r = 0; r < (f < 1.0 ? plan.removals : 1); ++r)
+              for (int d = 0; d < plan.density_draws; ++d) {
+                Job j;
+                j.sweep = "density";
+                j.pipeline = pipeline;
+                j.occlusion = occlusion;
+                j.map = m;
+                j.draw = d;
+                j.removal = f < 1.0 ? r : -1;
+                j.density = f;
+                j.pixel_sigma_px = plan.density_noise_px;
+                apply(j);
+                push(j);
+              }
+      }
+  };
+  sweeps("default", [&](WidthPipeline, bool) { return &shared; });
+  if (tuned)
+    sweeps("tuned", [&](WidthPipeline pipeline, bool occlusion) -> const FilterSetting* {
+      const auto it = tuned->find({forest_slam::pipelineName(pipeline), occlusionKey(occlusion)});
+      return it == tuned->end() || it->second == shared ? nullptr : &it->second;
+    });
   return jobs;
 }
 
@@ -191,11 +240,12 @@ inline nlohmann::json runJob(const Job& job,
   options.pipeline = job.pipeline;
   options.pixel_sigma_px = job.pixel_scale * job.pixel_sigma_px;
   options.width_sigma_px = job.width_scale * job.pixel_sigma_px;
+  options.tree_position_sigma_m = job.tree_position_sigma_m;
   nlohmann::json out;
   out["job"] = job.index;
   out["sweep"] = job.sweep;
   out["pipeline"] = forest_slam::pipelineName(job.pipeline);
-  out["occlusion"] = job.occlusion ? "non_occluded_only" : "ignored";
+  out["occlusion"] = occlusionKey(job.occlusion);
   out["map"] = job.map;
   out["draw"] = job.draw;
   out["removal"] = job.removal;
@@ -203,6 +253,8 @@ inline nlohmann::json runJob(const Job& job,
   out["pixel_sigma_px"] = job.pixel_sigma_px;
   out["pixel_scale"] = job.pixel_scale;
   out["width_scale"] = job.width_scale;
+  out["tree_position_sigma_m"] = job.tree_position_sigma_m;
+  out["setting"] = job.setting;
   out["study_seed"] = study_seed;
   out["forest_seed"] = forestSeed(study_seed, job.map);
   out["trees"] = scenario.trees.size();
