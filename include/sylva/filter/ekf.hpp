@@ -1232,18 +1232,22 @@ class BasicEkf {
       toInvariantIncrement(delta);
       prepareGaugeTransport(delta);
       checkPosteriorDomain(delta);  // may throw; nothing of the filter is written yet
-      // R K^T before anything is written: it allocates (M x n), and a failed allocation must
-      // leave the filter as it was.
+      // Every product before anything is written, into a workspace of its own: R K^T
+      // allocates (M x n), and for a large state the n x n products make Eigen take its
+      // packing buffers from the heap; a failed allocation must leave the filter as it was.
       const Eigen::Matrix<double, M, Eigen::Dynamic> RKt = R * K.transpose();
-      applyMeanIncrement(delta);
+      if (joseph_.size() < static_cast<Eigen::Index>(n_) * n_) joseph_.resize(static_cast<Eigen::Index>(n_) * n_);
+      Eigen::Map<Eigen::MatrixXd> A(joseph_.data(), n_, n_);
       // A = (I - K H) P = P - K (P H^T)^T on the full matrix.
-      P.template triangularView<Eigen::StrictlyUpper>() = P.transpose();
-      P.noalias() -= K * PHt.transpose();
+      A = P.template selfadjointView<Eigen::Lower>();
+      A.noalias() -= K * PHt.transpose();
       // B = A H^T, reusing the PHt workspace.
-      applyHt(P, PHt);
-      // P = A - B K^T + K R K^T  ((I - K H) P (I - K H)^T + K R K^T)
-      P.noalias() -= PHt * K.transpose();
-      P.noalias() += K * RKt;
+      applyHt(A, PHt);
+      // A - B K^T + K R K^T = (I - K H) P (I - K H)^T + K R K^T
+      A.noalias() -= PHt * K.transpose();
+      A.noalias() += K * RKt;
+      applyMeanIncrement(delta);
+      P.template triangularView<Eigen::Lower>() = A;
     } else {
       (void)R;
       (void)applyHt;
@@ -1593,6 +1597,7 @@ class BasicEkf {
   std::unordered_map<Id, std::size_t> index_;
   Eigen::VectorXd workspace_a_;
   Eigen::VectorXd workspace_b_;
+  Eigen::VectorXd joseph_;  ///< the Joseph form's n x n posterior, before it is copied into P
   Eigen::VectorXd delta_;
   Eigen::VectorXd invariant_;  ///< c and a of the invariant EKF's covariance transport (2n)
   /// N(x-)^T, (N(x+) - N(x-))^T and B^T of the observability-constrained transport (3 x 5n).
