@@ -162,7 +162,10 @@ std::string describePlan(const StudyPlan& p, bool quick, std::size_t runs) {
      << " px. Filter noise in the sweeps: " << p.pixel_scale << " x sigma on u, v and "
      << p.width_scale
      << " x sigma on w (TreeSlamOptions' defaults); then again with each pipeline's own best "
-        "setting where it differs (study/tuning.md). Each configuration is run with occlusions "
+        "setting where it differs (study/tuning.md), with the first "
+     << p.tuned_noise_draws << " noise draws per map and level and " << p.tuned_removals << " removals x "
+     << p.tuned_density_draws
+     << " noise draws per map and density. Each configuration is run with occlusions "
         "ignored and with only non-occluded trees. Built with " __VERSION__
         ": the runs are bit-identical for one build whatever the threads and shards; another "
         "compiler changes the last bits of the numbers (about 1e-15 relative), which can tip a "

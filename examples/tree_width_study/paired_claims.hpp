@@ -13,6 +13,7 @@
 #include <cstdio>
 #include <functional>
 #include <map>
+#include <set>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -93,25 +94,39 @@ struct PairedComparison {
   std::map<std::string, std::string> figures;  ///< named figures for results.figures.json
 };
 
-/// The run of `pipeline` in one pair: at its tuned setting when `tuned` and it has one there,
-/// else at the shared setting.
-inline std::map<std::string, RunOutcome>::const_iterator findRun(const std::map<std::string, RunOutcome>& runs,
-                                                                  const std::string& pipeline, bool tuned) {
-  if (tuned) {
-    const auto t = runs.find(pipeline + kTunedSuffix);
-    if (t != runs.end()) return t;
+/// Which pipelines were rerun at a tuned setting, by sweep and occlusion mode.
+class TunedRuns {
+ public:
+  explicit TunedRuns(const PairedRuns& paired) {
+    const std::size_t suffix = std::string(kTunedSuffix).size();
+    for (const auto& [k, runs] : paired)
+      for (const auto& [name, outcome] : runs)
+        if (name.size() > suffix && name.compare(name.size() - suffix, suffix, kTunedSuffix) == 0)
+          rerun_.insert({k.sweep, k.occlusion, name.substr(0, name.size() - suffix)});
   }
-  return runs.find(pipeline);
-}
+  /// The run of `pipeline` in one pair: with `tuned`, its tuned run where the pipeline was
+  /// rerun in that sweep and mode (none: end(), the pair is not one of the reruns), else its
+  /// run at the shared setting (the tuning kept it).
+  std::map<std::string, RunOutcome>::const_iterator find(const PairKey& k,
+                                                         const std::map<std::string, RunOutcome>& runs,
+                                                         const std::string& pipeline, bool tuned) const {
+    if (tuned && rerun_.count({k.sweep, k.occlusion, pipeline})) return runs.find(pipeline + kTunedSuffix);
+    return runs.find(pipeline);
+  }
+
+ private:
+  std::set<std::tuple<std::string, std::string, std::string>> rerun_;
+};
 
 /// Convergence of `pipeline` against "no width" over the pairs that `take` keeps (`tuned`: each
 /// at its own best setting).
 inline PairedComparison compareConvergence(const PairedRuns& paired, const std::string& pipeline,
                                            const std::function<bool(const PairKey&)>& take, bool tuned = false) {
   long n = 0, with = 0, without = 0, only_with = 0, only_without = 0;
+  const TunedRuns reruns(paired);
   for (const auto& [k, runs] : paired) {
     if (!take(k)) continue;
-    const auto a = findRun(runs, pipeline, tuned), b = findRun(runs, "none", tuned);
+    const auto a = reruns.find(k, runs, pipeline, tuned), b = reruns.find(k, runs, "none", tuned);
     if (a == runs.end() || b == runs.end()) continue;
     ++n;
     with += a->second.converged;
@@ -138,9 +153,10 @@ inline PairedComparison compareConvergence(const PairedRuns& paired, const std::
 inline PairedComparison compareTrajectoryError(const PairedRuns& paired, const std::string& pipeline,
                                                const std::function<bool(const PairKey&)>& take, bool tuned = false) {
   std::vector<double> d;
+  const TunedRuns reruns(paired);
   for (const auto& [k, runs] : paired) {
     if (!take(k)) continue;
-    const auto a = findRun(runs, pipeline, tuned), b = findRun(runs, "none", tuned);
+    const auto a = reruns.find(k, runs, pipeline, tuned), b = reruns.find(k, runs, "none", tuned);
     if (a == runs.end() || b == runs.end() || !a->second.converged || !b->second.converged) continue;
     d.push_back(a->second.et - b->second.et);
   }

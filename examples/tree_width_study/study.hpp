@@ -94,9 +94,16 @@ struct StudyPlan {
   // The filter's noise scales in the noise and density sweeps (TreeSlamOptions' defaults).
   double pixel_scale = 1.5;
   double width_scale = 1.0;
+  // The reruns at each pipeline's tuned setting: the same maps, levels and densities with the
+  // first of the noise draws and removals (half the noise sweep's runs, a third of the
+  // density sweep's), every pipeline on the same measurements as before.
+  int tuned_noise_draws = 5;
+  int tuned_removals = 3;
+  int tuned_density_draws = 1;
 
   /// The reduced sweep of --quick: every noise level and density of the full study, on 5
-  /// maps with fewer draws, and a smaller gain grid (1050 runs, about 4 minutes on 2 cores).
+  /// maps with fewer draws, and a smaller gain grid (1050 runs at the shared setting, about 4
+  /// minutes on 2 cores, and one noise draw per map for the reruns at the tuned settings).
   static StudyPlan quick() {
     StudyPlan p;
     p.maps = 5;
@@ -106,14 +113,17 @@ struct StudyPlan {
     p.noise_draws = 2;
     p.removals = 1;
     p.density_draws = 2;
+    p.tuned_noise_draws = 1;
+    p.tuned_removals = 1;
+    p.tuned_density_draws = 1;
     return p;
   }
 };
 
 /// All runs of `plan`, in their fixed order. With `tuned`, the noise and density sweeps are
-/// run a second time for every pipeline and occlusion mode whose tuned setting differs from the
-/// shared default; those runs come last (setting "tuned"), so the default runs keep their
-/// indices whether or not a tuning exists.
+/// run a second time (with the plan's tuned_* draws) for every pipeline and occlusion mode
+/// whose tuned setting differs from the shared default; those runs come last (setting
+/// "tuned"), so the default runs keep their indices whether or not a tuning exists.
 inline std::vector<Job> enumerateJobs(const StudyPlan& plan, const TunedSettings* tuned = nullptr) {
   std::vector<Job> jobs;
   const auto push = [&jobs](Job j) {
@@ -142,7 +152,7 @@ inline std::vector<Job> enumerateJobs(const StudyPlan& plan, const TunedSettings
     }
   }
   const FilterSetting shared{plan.pixel_scale, plan.width_scale, Job{}.tree_position_sigma_m};
-  const auto sweeps = [&](const std::string& setting_name,
+  const auto sweeps = [&](const std::string& setting_name, int noise_draws, int removals, int density_draws,
                           const std::function<const FilterSetting*(WidthPipeline, bool)>& setting_of) {
     const auto apply = [&](Job& j) {
       const FilterSetting* f = setting_of(j.pipeline, j.occlusion);
@@ -156,7 +166,7 @@ inline std::vector<Job> enumerateJobs(const StudyPlan& plan, const TunedSettings
         if (!setting_of(pipeline, occlusion)) continue;
         for (double sigma : plan.noise_levels_px)
           for (int m = 0; m < plan.maps; ++m)
-            for (int d = 0; d < plan.noise_draws; ++d) {
+            for (int d = 0; d < noise_draws; ++d) {
               Job j;
               j.sweep = "noise";
               j.pipeline = pipeline;
@@ -173,8 +183,8 @@ inline std::vector<Job> enumerateJobs(const StudyPlan& plan, const TunedSettings
         if (!setting_of(pipeline, occlusion)) continue;
         for (double f : plan.densities)
           for (int m = 0; m < plan.maps; ++m)
-            for (int r = 0; r < (f < 1.0 ? plan.removals : 1); ++r)
-              for (int d = 0; d < plan.density_draws; ++d) {
+            for (int r = 0; r < (f < 1.0 ? removals : 1); ++r)
+              for (int d = 0; d < density_draws; ++d) {
                 Job j;
                 j.sweep = "density";
                 j.pipeline = pipeline;
@@ -189,9 +199,11 @@ inline std::vector<Job> enumerateJobs(const StudyPlan& plan, const TunedSettings
               }
       }
   };
-  sweeps("default", [&](WidthPipeline, bool) { return &shared; });
+  sweeps("default", plan.noise_draws, plan.removals, plan.density_draws,
+         [&](WidthPipeline, bool) { return &shared; });
   if (tuned)
-    sweeps("tuned", [&](WidthPipeline pipeline, bool occlusion) -> const FilterSetting* {
+    sweeps("tuned", plan.tuned_noise_draws, plan.tuned_removals, plan.tuned_density_draws,
+           [&](WidthPipeline pipeline, bool occlusion) -> const FilterSetting* {
       const auto it = tuned->find({forest_slam::pipelineName(pipeline), occlusionKey(occlusion)});
       return it == tuned->end() || it->second == shared ? nullptr : &it->second;
     });
