@@ -369,6 +369,12 @@ SOURCES = {
         "quick": {"main": "{bin}/moving_objects/moving_objects --json --slam-seeds 1 --svg-prefix {img}/moving_objects"},
         "figures": moving_objects_figures,
     },
+    "parking-tables": {
+        "file": "docs/examples/parking-tables.figures.json",
+        "runs": {"tables": "python3 examples/parking/study_table.py {bin}/parking/parking --json"},
+        "quick": {"tables": "python3 examples/parking/study_table.py {bin}/parking/parking --seeds 2 --json"},
+        "figures": lambda out: {k: "\n\n" + v + "\n\n" for k, v in out["tables"].items()},
+    },
     "moving-objects-seeds": {
         "file": "docs/examples/moving-objects-seeds.figures.json",
         "runs": {f"seed_{k}": f"{{bin}}/moving_objects/moving_objects --seed {k} --slam-seeds 30 --json --svg-prefix ''"

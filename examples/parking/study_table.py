@@ -63,42 +63,57 @@ def study_row(name, flags, s):
             f"{s['mean_time_s']:.1f} ({s['max_time_s']:.1f}) |")
 
 
+STUDY_HEADER = ("| Variant | flags | parked | lost | timed out | x spread cm | y spread cm | cycles | time s |\n"
+                "|---|---|---|---|---|---|---|---|---|")
+
+
+def tables(binary, seeds):
+    """The page's three tables, as markdown: Experiments I-III, the study with and without the
+    adaptation of c (and the thesis' figures), and the variants."""
+    rows = ["| Experiment | flags | seed 1: time s, cycles, error x / y cm | "
+            f"seeds 1-{seeds}: parked, cycles, mean time s | thesis Table 5.3 |",
+            "|---|---|---|---|---|"]
+    for name, flags in EXPERIMENTS:
+        one = run(binary, flags + ["--seed", "1"])
+        many = [run(binary, flags + ["--seed", str(s)]) for s in range(1, seeds + 1)]
+        parked = [m for m in many if m["parked"]]
+        cycles = sorted({m["cycles"] for m in parked})
+        mean_t = sum(m["time_s"] for m in parked) / max(len(parked), 1)
+        t, c = THESIS_TABLE_5_3[name.split()[0]]
+        rows.append(f"| {name} | `{' '.join(flags) or '(defaults)'}` | {one['time_s']:.1f}, "
+                    f"{one['cycles']}, {100 * one['final_error']['x_m']:.2f} / "
+                    f"{100 * one['final_error']['y_m']:.2f} | {len(parked)}/{len(many)}, "
+                    f"{'-'.join(str(x) for x in (cycles[0], cycles[-1])) if cycles else '-'}, "
+                    f"{mean_t:.1f} | {t} s, {c} |")
+    experiments = "\n".join(rows)
+    base = run(binary, ["--study"])
+    study = "\n".join([
+        STUDY_HEADER,
+        study_row("**adaptive c (defaults)**", ["--study"], base),
+        study_row(f"fixed c = {base['no_adaptation']['c_px']:.0f} px = c_max (no adaptation)",
+                  ["(same run: `no_adaptation`)"], base["no_adaptation"]),
+        study_row(f"fixed c = {base['static_c_min']['c_px']:.0f} px = c_min",
+                  ["(same run: `static_c_min`)"], base["static_c_min"]),
+        "| **thesis** (Sec. 5.5.3, 5.6; Table 5.3) | 20 starts | 20/20 | | | +-4 | +-0.5 | 1-3 | 10.9-47.3 |"])
+    variants = "\n".join([STUDY_HEADER] + [study_row(name, ["--study"] + flags, run(binary, ["--study"] + flags))
+                                           for name, flags in VARIANTS])
+    return {"experiments_table": experiments, "study_table": study, "variants_table": variants}
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("binary", help="path to the parking program")
     parser.add_argument("--seeds", type=int, default=20, help="seeds per experiment")
+    parser.add_argument("--json", action="store_true",
+                        help="print the tables as one JSON object (scripts/docs_figures.py reads it)")
     a = parser.parse_args()
-
-    print(f"Experiments (seed 1, and over seeds 1-{a.seeds}):\n")
-    print("| Experiment | flags | seed 1: time s, cycles, error x / y cm | "
-          f"seeds 1-{a.seeds}: parked, cycles, mean time s | thesis Table 5.3 |")
-    print("|---|---|---|---|---|")
-    for name, flags in EXPERIMENTS:
-        one = run(a.binary, flags + ["--seed", "1"])
-        many = [run(a.binary, flags + ["--seed", str(s)]) for s in range(1, a.seeds + 1)]
-        parked = [m for m in many if m["parked"]]
-        cycles = sorted({m["cycles"] for m in parked})
-        mean_t = sum(m["time_s"] for m in parked) / max(len(parked), 1)
-        key = name.split()[0]
-        t, c = THESIS_TABLE_5_3[key]
-        print(f"| {name} | `{' '.join(flags) or '(defaults)'}` | {one['time_s']:.1f}, "
-              f"{one['cycles']}, {100 * one['final_error']['x_m']:.2f} / "
-              f"{100 * one['final_error']['y_m']:.2f} | {len(parked)}/{len(many)}, "
-              f"{'-'.join(str(x) for x in (cycles[0], cycles[-1])) if cycles else '-'}, "
-              f"{mean_t:.1f} | {t} s, {c} |")
-
-    print("\nStudy (200 starts, seed 1; spreads in cm; cycles and time: mean (max)):\n")
-    print("| Variant | flags | parked | lost | timed out | x spread | y spread | cycles | "
-          "time s |")
-    print("|---|---|---|---|---|---|---|---|---|")
-    base = run(a.binary, ["--study"])
-    print(study_row("**adaptive c (defaults)**", ["--study"], base))
-    print(study_row(f"fixed c = {base['no_adaptation']['c_px']:.0f} px = c_max (no adaptation)",
-                    ["(same run: `no_adaptation`)"], base["no_adaptation"]))
-    print(study_row(f"fixed c = {base['static_c_min']['c_px']:.0f} px = c_min",
-                    ["(same run: `static_c_min`)"], base["static_c_min"]))
-    for name, flags in VARIANTS:
-        print(study_row(name, ["--study"] + flags, run(a.binary, ["--study"] + flags)))
+    t = tables(a.binary, a.seeds)
+    if a.json:
+        print(json.dumps(t))
+        return
+    print(f"Experiments (seed 1, and over seeds 1-{a.seeds}):\n\n{t['experiments_table']}\n")
+    print(f"Study (200 starts, seed 1; spreads in cm; cycles and time: mean (max)):\n\n{t['study_table']}\n")
+    print(f"Variants:\n\n{t['variants_table']}")
 
 
 if __name__ == "__main__":
