@@ -344,9 +344,12 @@ int main(int argc, char** argv) {
     if (!resume_path.empty())
       for (auto& j : readLines({resume_path})) {
         const int index = j.at("job").get<int>();
-        if (index >= static_cast<int>(all.size()) || j.at("sweep") != all[index].sweep ||
-            j.at("pipeline") != forest_slam::pipelineName(all[index].pipeline) ||
-            j.at("map") != all[index].map)
+        const Job* job = index < static_cast<int>(all.size()) ? &all[static_cast<std::size_t>(index)] : nullptr;
+        if (!job || j.at("sweep") != job->sweep || j.at("pipeline") != forest_slam::pipelineName(job->pipeline) ||
+            j.at("occlusion") != occlusionKey(job->occlusion) || j.at("map") != job->map ||
+            j.at("draw") != job->draw || j.at("removal") != job->removal || j.at("density") != job->density ||
+            j.at("pixel_sigma_px") != job->pixel_sigma_px || j.at("pixel_scale") != job->pixel_scale ||
+            j.at("width_scale") != job->width_scale)
           throw std::runtime_error(resume_path + ": job " + std::to_string(index) +
                                    " is not the job of this sweep with that index (other flags?)");
         kept[index] = std::move(j);

@@ -154,12 +154,20 @@ inline std::vector<Job> enumerateJobs(const StudyPlan& plan, const TunedSettings
   const FilterSetting shared{plan.pixel_scale, plan.width_scale, Job{}.tree_position_sigma_m};
   const auto sweeps = [&](const std::string& setting_name, int noise_draws, int removals, int density_draws,
                           const std::function<const FilterSetting*(WidthPipeline, bool)>& setting_of) {
-    const auto apply = [&](Job& j) {
-      const FilterSetting* f = setting_of(j.pipeline, j.occlusion);
+    // One run of this setting: its sweep, pipeline, map and noise draw, and the filter setting.
+    const auto job = [&](const char* sweep, WidthPipeline pipeline, bool occlusion, int map, int draw) {
+      Job j;
+      j.sweep = sweep;
+      j.pipeline = pipeline;
+      j.occlusion = occlusion;
+      j.map = map;
+      j.draw = draw;
+      const FilterSetting* f = setting_of(pipeline, occlusion);
       j.pixel_scale = f->pixel_scale;
       j.width_scale = f->width_scale;
       j.tree_position_sigma_m = f->tree_position_sigma_m;
       j.setting = setting_name;
+      return j;
     };
     for (bool occlusion : {false, true})
       for (WidthPipeline pipeline : kAllPipelines) {
@@ -167,14 +175,8 @@ inline std::vector<Job> enumerateJobs(const StudyPlan& plan, const TunedSettings
         for (double sigma : plan.noise_levels_px)
           for (int m = 0; m < plan.maps; ++m)
             for (int d = 0; d < noise_draws; ++d) {
-              Job j;
-              j.sweep = "noise";
-              j.pipeline = pipeline;
-              j.occlusion = occlusion;
-              j.map = m;
-              j.draw = d;
+              Job j = job("noise", pipeline, occlusion, m, d);
               j.pixel_sigma_px = sigma;
-              apply(j);
               push(j);
             }
       }
@@ -185,16 +187,10 @@ inline std::vector<Job> enumerateJobs(const StudyPlan& plan, const TunedSettings
           for (int m = 0; m < plan.maps; ++m)
             for (int r = 0; r < (f < 1.0 ? removals : 1); ++r)
               for (int d = 0; d < density_draws; ++d) {
-                Job j;
-                j.sweep = "density";
-                j.pipeline = pipeline;
-                j.occlusion = occlusion;
-                j.map = m;
-                j.draw = d;
+                Job j = job("density", pipeline, occlusion, m, d);
                 j.removal = f < 1.0 ? r : -1;
                 j.density = f;
                 j.pixel_sigma_px = plan.density_noise_px;
-                apply(j);
                 push(j);
               }
       }

@@ -36,4 +36,9 @@ common=(--quick --frames 30 --no-report --tuned none)
 "$study" "${common[@]}" --limit 3 --threads 1 --out "$dir/part.jsonl"
 "$study" "${common[@]}" --limit 6 --threads 2 --resume "$dir/part.jsonl" --out "$dir/resumed.jsonl"
 cmp "$dir/once.jsonl" "$dir/resumed.jsonl"
+# A run file of other flags (the quick sweep's gain grid is not the full one's) is refused.
+if "$study" --frames 30 --no-report --tuned none --limit 6 --resume "$dir/part.jsonl" --out "$dir/other.jsonl" 2> "$dir/other.err"; then
+  echo "resuming from a run file of other flags was accepted"; exit 1
+fi
+grep -q "is not the job of this sweep" "$dir/other.err"
 echo "tune writes its files; tuned runs are added for the tuned pipeline only; a resumed run file is byte-identical"
