@@ -55,7 +55,7 @@
 #include <sylva/consistency/monte_carlo.hpp>
 #include <sylva/core/types.hpp>
 #include <sylva/filter/ekf.hpp>
-#include <sylva/filter/tree_life_cycle.hpp>
+#include <sylva/slam/tree_life_cycle.hpp>
 #include <sylva/landmarks/inverse_depth.hpp>
 #include <sylva/landmarks/inverse_depth_radius.hpp>
 #include <sylva/landmarks/point3.hpp>

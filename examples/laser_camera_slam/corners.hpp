@@ -24,7 +24,7 @@
 #include <Eigen/Eigenvalues>
 
 #include <sylva/core/types.hpp>
-#include <sylva/measurements/laser_camera.hpp>
+#include <sylva/laser_camera/sensor.hpp>
 
 namespace laser_camera_slam {
 

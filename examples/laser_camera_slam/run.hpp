@@ -14,7 +14,7 @@
 
 #include <sylva/association.hpp>
 #include <sylva/consistency.hpp>
-#include <sylva/measurements.hpp>
+#include <sylva/laser_camera.hpp>
 #include <sylva/sim.hpp>
 #include <sylva/sylva.hpp>
 

@@ -2,6 +2,5 @@
 // IWYU pragma: begin_exports
 #include "sylva/filter/ekf.hpp"
 #include "sylva/filter/linearization.hpp"
-#include "sylva/filter/tree_life_cycle.hpp"
 #include "sylva/filter/update_form.hpp"
 // IWYU pragma: end_exports

@@ -5,6 +5,7 @@
 #include <iostream>
 #include <string>
 
+#include <Eigen/Eigenvalues>
 #include <sylva/sylva.hpp>
 
 namespace {

@@ -2,6 +2,7 @@
 // quoted verbatim, as the body of main(), in README.md; the last test case checks that.
 #include "sylva_catch.hpp"
 
+#include <Eigen/LU>
 #include <sylva/consistency/chi_square.hpp>
 #include <sylva/sylva.hpp>
 

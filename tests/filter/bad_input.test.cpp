@@ -152,6 +152,23 @@ TEST_CASE("construction validates the prior and the noise", "[filter][errors]") 
   Mat<3, 3> not_psd = Mat<3, 3>::Identity();
   not_psd(0, 0) = -1.0;
   CHECK_THROWS_WITH((Ekf<Unicycle2D, Point2>(Vec<3>::Zero(), not_psd)), Contains("not positive semi-definite"));
+  // Semi-definite priors are valid (a pose known exactly, a rank-one spread); an indefinite
+  // one is refused even with a positive diagonal or a zero one, and the tolerance is 1e-12 of
+  // the largest entry.
+  const Vec<3> v(1.0, -2.0, 0.5);
+  CHECK_NOTHROW(Ekf<Unicycle2D, Point2>(Vec<3>::Zero(), Mat<3, 3>::Zero()));
+  CHECK_NOTHROW(Ekf<Unicycle2D, Point2>(Vec<3>::Zero(), Mat<3, 3>(v * v.transpose())));
+  Mat<3, 3> positive_diagonal = Mat<3, 3>::Identity();
+  positive_diagonal(0, 1) = positive_diagonal(1, 0) = 1.5;  // eigenvalues 2.5, 1, -0.5
+  CHECK_THROWS_WITH((Ekf<Unicycle2D, Point2>(Vec<3>::Zero(), positive_diagonal)), Contains("not positive semi-definite"));
+  Mat<3, 3> zero_diagonal = Mat<3, 3>::Zero();
+  zero_diagonal(0, 1) = zero_diagonal(1, 0) = 1.0;  // eigenvalues 1, 0, -1
+  CHECK_THROWS_WITH((Ekf<Unicycle2D, Point2>(Vec<3>::Zero(), zero_diagonal)), Contains("not positive semi-definite"));
+  Mat<3, 3> slightly_negative = 4.0 * Mat<3, 3>::Identity();
+  slightly_negative(2, 2) = -1e-13;  // within 1e-12 of the largest entry, 4
+  CHECK_NOTHROW(Ekf<Unicycle2D, Point2>(Vec<3>::Zero(), slightly_negative));
+  slightly_negative(2, 2) = -1e-10;
+  CHECK_THROWS_WITH((Ekf<Unicycle2D, Point2>(Vec<3>::Zero(), slightly_negative)), Contains("not positive semi-definite"));
   Mat<3, 3> asymmetric = Mat<3, 3>::Identity();
   asymmetric(0, 1) = 0.5;
   CHECK_THROWS_WITH((Ekf<Unicycle2D, Point2>(Vec<3>::Zero(), asymmetric)), Contains("not symmetric"));

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include <sylva/detail/model_traits.hpp>
+#include <sylva/diff/evaluate.hpp>
 #include <sylva/diff/numeric_diff.hpp>
 #include <sylva/filter/ekf.hpp>
 #include <sylva/landmarks/inverse_depth.hpp>

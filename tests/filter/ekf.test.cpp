@@ -4,6 +4,7 @@
 
 #include <random>
 
+#include <Eigen/Eigenvalues>
 #include <sylva/sylva.hpp>
 #include <sylva/testing/dense_reference_ekf.hpp>
 

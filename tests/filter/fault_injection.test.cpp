@@ -35,7 +35,7 @@ void onEigenAssert(const char* what) {
 #include <string>
 #include <vector>
 
-#include <sylva/sylva.hpp>
+#include <sylva/monocular.hpp>
 
 #include "copy_init.hpp"
 #include "filter/monocular_rig.hpp"

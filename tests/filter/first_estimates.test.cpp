@@ -6,6 +6,7 @@
 #include <random>
 #include <vector>
 
+#include <Eigen/Geometry>
 #include <sylva/consistency.hpp>
 #include <sylva/filter/ekf.hpp>
 #include <sylva/landmarks.hpp>

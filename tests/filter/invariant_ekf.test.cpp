@@ -11,6 +11,7 @@
 
 #include <unsupported/Eigen/MatrixFunctions>
 
+#include <Eigen/LU>
 #include <sylva/core/angles.hpp>
 #include <sylva/filter/ekf.hpp>
 #include <sylva/landmarks/point2.hpp>

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include <Eigen/Cholesky>
+#include <Eigen/LU>
 #include <sylva/diff/numeric_diff.hpp>
 #include <sylva/filter/ekf.hpp>
 #include <sylva/landmarks.hpp>
@@ -101,16 +102,51 @@ TEST_CASE("iterated update: matches a dense iterated EKF written out in full") {
 }
 
 TEST_CASE("iterated update: one linearization is the textbook update, bit for bit") {
-  // (The iterated update runs through the batched path, so it is compared with a batch of one.)
+  // A single observation (the fixed-size path) and a batch of two (the batched path), each
+  // against the textbook update of the same form.
   Filter textbook = uncertainFilter();
   Filter iterated = uncertainFilter();
   iterated.setLinearizationPoint(LinearizationPoint::kIterated);
   iterated.setIteratedUpdate({1, 1e-3});
-  const std::vector<Observation<RangeBearing>> one = {{1, Vec<2>(1.6, 0.55), iteratedSensorNoise()}};
-  textbook.update(RangeBearing(), one);
-  iterated.update(RangeBearing(), 1, Vec<2>(1.6, 0.55), iteratedSensorNoise());
+  const Innovation<2> textbook_nu = textbook.update(RangeBearing(), 1, Vec<2>(1.6, 0.55), iteratedSensorNoise());
+  const Innovation<2> iterated_nu = iterated.update(RangeBearing(), 1, Vec<2>(1.6, 0.55), iteratedSensorNoise());
   CHECK((textbook.mean().array() == iterated.mean().array()).all());
   CHECK((textbook.covariance().array() == iterated.covariance().array()).all());
+  CHECK((textbook_nu.nu.array() == iterated_nu.nu.array()).all());
+  CHECK((textbook_nu.S.array() == iterated_nu.S.array()).all());
+
+  Filter textbook_batch = uncertainFilter();
+  Filter iterated_batch = uncertainFilter();
+  iterated_batch.setLinearizationPoint(LinearizationPoint::kIterated);
+  iterated_batch.setIteratedUpdate({1, 1e-3});
+  const std::vector<Observation<RangeBearing>> two = {{1, Vec<2>(1.6, 0.55), iteratedSensorNoise()},
+                                                      {2, Vec<2>(3.3, -0.5), iteratedSensorNoise()}};
+  textbook_batch.update(RangeBearing(), two);
+  iterated_batch.update(RangeBearing(), two);
+  CHECK((textbook_batch.mean().array() == iterated_batch.mean().array()).all());
+  CHECK((textbook_batch.covariance().array() == iterated_batch.covariance().array()).all());
+}
+
+TEST_CASE("iterated update: one observation iterates as a batch of one") {
+  // The single-observation update iterates on fixed-size blocks, the batched one on dynamic
+  // ones: the same Gauss-Newton iterates, equal to round-off.
+  Filter single = uncertainFilter();
+  Filter batch = uncertainFilter();
+  for (Filter* f : {&single, &batch}) {
+    f->setLinearizationPoint(LinearizationPoint::kIterated);
+    f->setIteratedUpdate({20, 1e-9});
+  }
+  const Innovation<2> prior = single.update(RangeBearing(), 1, Vec<2>(1.6, 0.55), iteratedSensorNoise());
+  const std::vector<Observation<RangeBearing>> one = {{1, Vec<2>(1.6, 0.55), iteratedSensorNoise()}};
+  batch.update(RangeBearing(), one);
+  const double scale = batch.covariance().cwiseAbs().maxCoeff();
+  CHECK((single.mean() - batch.mean()).cwiseAbs().maxCoeff() < 1e-12);
+  CHECK((single.covariance() - batch.covariance()).cwiseAbs().maxCoeff() < 1e-12 * scale);
+  // The innovation returned is the prior's, as a textbook filter would see it.
+  Filter textbook = uncertainFilter();
+  const Innovation<2> expected = textbook.innovation(RangeBearing(), 1, Vec<2>(1.6, 0.55), iteratedSensorNoise());
+  CHECK((prior.nu - expected.nu).cwiseAbs().maxCoeff() < 1e-12);
+  CHECK((prior.S - expected.S).cwiseAbs().maxCoeff() < 1e-12);
 }
 
 TEST_CASE("iterated update: converges to the Gauss-Newton fixed point of the MAP cost") {

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 #include <unsupported/Eigen/AutoDiff>
 #include <sylva/consistency/camera_pose_nees.hpp>

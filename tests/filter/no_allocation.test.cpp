@@ -18,7 +18,7 @@ inline void countEigenAssertFailure(const char* what) {
 #define EIGEN_RUNTIME_NO_MALLOC
 #define eigen_assert(x) ((x) ? static_cast<void>(0) : countEigenAssertFailure(#x))
 
-#include <sylva/sylva.hpp>
+#include <sylva/monocular.hpp>
 
 #include "sylva_catch.hpp"
 

@@ -12,7 +12,7 @@
 #include <sylva/core/quaternion.hpp>
 #include <sylva/diff/numeric_diff.hpp>
 #include <sylva/filter/ekf.hpp>
-#include <sylva/filter/tree_life_cycle.hpp>
+#include <sylva/slam/tree_life_cycle.hpp>
 #include <sylva/landmarks/inverse_depth.hpp>
 #include <sylva/landmarks/inverse_depth_radius.hpp>
 #include <sylva/landmarks/point2.hpp>

@@ -1,5 +1,7 @@
 // ConstantVelocity3D: the constant-velocity camera motion with quaternion renormalization.
 
+#include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
 #include <sylva/diff/numeric_diff.hpp>
 #include <sylva/filter/ekf.hpp>
 #include <sylva/motion/constant_velocity_3d.hpp>

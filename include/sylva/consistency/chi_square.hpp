@@ -13,7 +13,8 @@
 namespace sylva {
 
 /// The p-quantile of the chi-square distribution with `dof` degrees of freedom.
-inline double chiSquareQuantile(double p, double dof) {
+template <int = 0>  // compiled only where called (docs/build-time.md)
+double chiSquareQuantile(double p, double dof) {
   if (!(p > 0.0 && p < 1.0) || !(dof > 0.0)) {
     std::ostringstream os;
     os << "chiSquareQuantile: need 0 < p < 1 and dof > 0, got p = " << p << ", dof = " << dof;
@@ -25,7 +26,8 @@ inline double chiSquareQuantile(double p, double dof) {
 /// Two-sided `confidence` interval [lo, hi] for the average over `runs` independent runs of a
 /// chi-square(dof) statistic (NEES or NIS): runs * average ~ chi-square(runs * dof), so
 /// lo = chi2inv((1 - c) / 2, runs dof) / runs and hi = chi2inv((1 + c) / 2, runs dof) / runs.
-inline std::pair<double, double> averageChiSquareBounds(int dof, int runs, double confidence = 0.95) {
+template <int = 0>  // compiled only where called (docs/build-time.md)
+std::pair<double, double> averageChiSquareBounds(int dof, int runs, double confidence = 0.95) {
   if (dof <= 0 || runs <= 0) {
     std::ostringstream os;
     os << "averageChiSquareBounds: need dof > 0 and runs > 0, got dof = " << dof << ", runs = " << runs;
@@ -38,7 +40,8 @@ inline std::pair<double, double> averageChiSquareBounds(int dof, int runs, doubl
 
 /// Gate for individual compatibility: an innovation of dimension `dof` is accepted when its
 /// NIS is below the `probability` quantile (e.g. 0.95 or 0.99).
-inline double chiSquareGate(int dof, double probability = 0.95) {
+template <int = 0>  // compiled only where called (docs/build-time.md)
+double chiSquareGate(int dof, double probability = 0.95) {
   return chiSquareQuantile(probability, static_cast<double>(dof));
 }
 

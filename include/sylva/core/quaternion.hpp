@@ -69,7 +69,8 @@ Mat<3, 3, T> rotationMatrix(const Vec<4, T>& q) {
 }
 
 /// R_right(b), the matrix of right multiplication: a (x) b = R_right(b) a.
-inline Mat<4, 4> quaternionRightMatrix(const Vec<4>& b) {
+template <int = 0>  // compiled only where called (docs/build-time.md)
+Mat<4, 4> quaternionRightMatrix(const Vec<4>& b) {
   Mat<4, 4> R;
   R << b[0], -b[1], -b[2], -b[3],  //
       b[1], b[0], b[3], -b[2],     //
@@ -79,7 +80,8 @@ inline Mat<4, 4> quaternionRightMatrix(const Vec<4>& b) {
 }
 
 /// [a]x, the matrix of the cross product: skewSymmetric(a) b = a x b.
-inline Mat<3, 3> skewSymmetric(const Vec<3>& a) {
+template <int = 0>  // compiled only where called (docs/build-time.md)
+Mat<3, 3> skewSymmetric(const Vec<3>& a) {
   Mat<3, 3> S;
   S << 0.0, -a[2], a[1],  //
       a[2], 0.0, -a[0],   //
@@ -91,7 +93,8 @@ inline Mat<3, 3> skewSymmetric(const Vec<3>& a) {
 /// extension R(q)^T v = v - 2 w (u x v) + 2 u x (u x v), u = (x, y, z). Off the unit sphere
 /// this differs from other extensions only in the direction of q, which a model that
 /// normalizes q removes with the normalization's Jacobian (I - q q^T) / |q|.
-inline Mat<3, 4> rotateTransposedJacobian(const Vec<4>& q, const Vec<3>& v) {
+template <int = 0>  // compiled only where called (docs/build-time.md)
+Mat<3, 4> rotateTransposedJacobian(const Vec<4>& q, const Vec<3>& v) {
   const double w = q[0];
   const Vec<3> u = q.tail<3>();
   Mat<3, 4> J;

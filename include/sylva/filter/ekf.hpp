@@ -30,7 +30,6 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <iterator>
@@ -47,6 +46,7 @@
 #include "sylva/core/types.hpp"
 #include "sylva/detail/lower_rank_update.hpp"
 #include "sylva/detail/model_traits.hpp"
+#include "sylva/diff/evaluate.hpp"
 #include "sylva/filter/linearization.hpp"
 #include "sylva/filter/update_form.hpp"
 #include "sylva/noise/gaussian.hpp"
@@ -505,7 +505,12 @@ class BasicEkf {
 
   /// Fuses one observation `z` of landmark `id` through `model`, with measurement noise
   /// `noise`. The model's landmark type must be in `Landmarks...` (compile time) and match
-  /// the slot (runtime, kWrongLandmarkType). Returns the innovation used.
+  /// the slot (runtime, kWrongLandmarkType). Returns the innovation at the prior (for the
+  /// iterated update too).
+  ///
+  /// Everything here is of the model's fixed size M: one observation never instantiates the
+  /// batched path's dynamic-size kernels (docs/build-time.md). The iterated update runs the
+  /// batched path's iteration (`iterateBatch`) on this batch of one.
   template <typename Model>
   Innovation<Model::kDim> update(const Model& model,
                                  Id id,
@@ -513,38 +518,43 @@ class BasicEkf {
                                  const Gaussian<Model::kDim>& noise) {
     checkModel<Model>();
     constexpr int M = Model::kDim;
+    constexpr int L = Model::Landmark::kDim;
     if (!z.allFinite()) fail(ErrorCode::kNonFinite, nameOf<Model>() + ": measurement is not finite");
     checkMeasurement(model, z);
-    if (linearization_ == LinearizationPoint::kIterated) {
-      // The iterations live in the batched update; the innovation returned is the prior's.
-      const Innovation<M> prior = innovation(model, id, z, noise);
-      const Observation<Model> one[] = {Observation<Model>{id, z, noise}};
-      update(model, one);
-      return prior;
-    }
     const Linearization<Model, kRobotDim> lin = linearize(model, id);
-    const Vec<M> nu = detail::residual(model, z, lin.z_hat);
+    Vec<M> nu = detail::residual(model, z, lin.z_hat);
     if (!nu.allFinite()) fail(ErrorCode::kNonFinite, nameOf<Model>() + ": innovation is not finite");
 
+    // The linearization the gain uses: the prior's, or the last iterate's.
+    detail::BatchLinearizations<M, kRobotDim, L> lins(batch_.lins, batch_.offsets, 1);
+    lins.store(0, lin);
     auto PHt = workspaceMatrix<M>(0);
-    PHt.setZero();
-    accumulateCovarianceTimesHt<Model::Landmark::kDim>(lin.J_z_x, lin.J_z_l, lin.landmark_offset, PHt, 0);
-    Mat<M, M> S = lin.J_z_x * PHt.template topRows<kRobotDim>() +
-                  lin.J_z_l * PHt.template middleRows<Model::Landmark::kDim>(lin.landmark_offset) +
-                  noise.covariance();
-    S = (0.5 * (S + S.transpose())).eval();
-    Eigen::LLT<Mat<M, M>> llt(S);
-    if (llt.info() != Eigen::Success || !S.allFinite())
-      fail(ErrorCode::kNotPositiveDefinite,
-           nameOf<Model>() + ": innovation covariance S is not positive definite (landmark " +
-               std::to_string(id) + ")");
+    Mat<M, M> S;
+    Eigen::LLT<Mat<M, M>> llt;
+    // P H^T, S = H P H^T + R and its factor at the stored linearization.
+    const auto formInnovationCovariance = [&](const char* where) {
+      PHt.setZero();
+      accumulateCovarianceTimesHt<L>(lins.J_z_x(0), lins.J_z_l(0), lins.offset(0), PHt, 0);
+      S = lins.J_z_x(0) * PHt.template topRows<kRobotDim>() +
+          lins.J_z_l(0) * PHt.template middleRows<L>(lins.offset(0)) + noise.covariance();
+      S = (0.5 * (S + S.transpose())).eval();
+      llt.compute(S);
+      if (llt.info() != Eigen::Success || !S.allFinite())
+        fail(ErrorCode::kNotPositiveDefinite, nameOf<Model>() + ": innovation covariance S is not positive definite (landmark " +
+                                                  std::to_string(id) + ")" + where);
+    };
+    formInnovationCovariance("");
+    const Innovation<M> prior{nu, S};
+    if (linearization_ == LinearizationPoint::kIterated) {
+      const Observation<Model> one[] = {Observation<Model>{id, z, noise}};
+      iterateBatch(model, one, lins, nu, PHt, llt, [&] { formInnovationCovariance(" at an iterate"); });
+    }
     // From here on only the posterior domain check can fail, before anything is written.
     applyGain<M>(PHt, llt, nu, noise.covariance(), [&](const auto& A, auto&& out) {
-      out.noalias() = A.template middleCols<kRobotDim>(0) * lin.J_z_x.transpose();
-      out.noalias() +=
-          A.template middleCols<Model::Landmark::kDim>(lin.landmark_offset) * lin.J_z_l.transpose();
+      out.noalias() = A.template middleCols<kRobotDim>(0) * lins.J_z_x(0).transpose();
+      out.noalias() += A.template middleCols<L>(lins.offset(0)) * lins.J_z_l(0).transpose();
     });
-    return Innovation<M>{nu, S};
+    return prior;
   }
 
   /// Fuses several observations through one model. `Fusion::kBatched` (the default) stacks
@@ -1028,8 +1038,12 @@ class BasicEkf {
     const double scale = std::max(1.0, P.cwiseAbs().maxCoeff());
     if ((P - P.transpose()).cwiseAbs().maxCoeff() > 1e-9 * scale)
       fail(ErrorCode::kInvalidArgument, std::string(what) + " is not symmetric");
-    Eigen::SelfAdjointEigenSolver<Mat<R, R>> eig(0.5 * (P + P.transpose()), Eigen::EigenvaluesOnly);
-    if (eig.eigenvalues().minCoeff() < -1e-12 * scale)
+    // P has no eigenvalue below -tol (tol = 1e-12 of its largest entry) exactly when P + tol I
+    // is positive definite, which a Cholesky factorization decides: its backward error, about
+    // R eps |P|, is far below tol, so round-off cannot turn the verdict.
+    Mat<R, R> shifted = 0.5 * (P + P.transpose());
+    shifted.diagonal().array() += 1e-12 * scale;
+    if (Eigen::LLT<Mat<R, R>>(shifted).info() != Eigen::Success)
       fail(ErrorCode::kNotPositiveDefinite, std::string(what) + " is not positive semi-definite");
   }
 
@@ -1441,47 +1455,49 @@ class BasicEkf {
   /// O(n^2) (the rank-10 correction; B costs O(n) when A reads the robot alone), no
   /// allocation.
   void carryCovarianceAlongGauge() {
-    if (!gauge_active_) return;
-    gauge_active_ = false;
-    const auto Nt = gaugeBlock(0);
-    const auto dNt = gaugeBlock(1);
-    auto Bt = gaugeBlock(2);
-    // Bt = N_a^T P (5 x n) from the lower triangle.
-    if (gauge_robot_only_) {
-      const Mat<kGaugeDim, kRobotDim> N_robot = Nt.template leftCols<kRobotDim>();
-      Bt.template leftCols<kRobotDim>() = N_robot * symmetricBlock<kRobotDim, kRobotDim>(0, 0);
-      for (int j = kRobotDim; j < n_; ++j) {
-        const Vec<kRobotDim> p = cov_.row(j).template head<kRobotDim>().transpose();  // P(robot, j)
-        Bt.col(j) = N_robot * p;
+    if constexpr (kObservabilityConstrainedApplies) {  // else nothing to carry, and nothing compiled
+      if (!gauge_active_) return;
+      gauge_active_ = false;
+      const auto Nt = gaugeBlock(0);
+      const auto dNt = gaugeBlock(1);
+      auto Bt = gaugeBlock(2);
+      // Bt = N_a^T P (5 x n) from the lower triangle.
+      if (gauge_robot_only_) {
+        const Mat<kGaugeDim, kRobotDim> N_robot = Nt.template leftCols<kRobotDim>();
+        Bt.template leftCols<kRobotDim>() = N_robot * symmetricBlock<kRobotDim, kRobotDim>(0, 0);
+        for (int j = kRobotDim; j < n_; ++j) {
+          const Vec<kRobotDim> p = cov_.row(j).template head<kRobotDim>().transpose();  // P(robot, j)
+          Bt.col(j) = N_robot * p;
+        }
+      } else {
+        // Each stored P(i, j), i >= j, adds N_i P(i, j) to column j and, below the diagonal,
+        // N_j P(i, j) to column i.
+        Bt.setZero();
+        for (int j = 0; j < n_; ++j) {
+          const auto col = cov_.col(j).segment(j, n_ - j);
+          Bt.col(j).noalias() += Nt.middleCols(j, n_ - j) * col;
+          Bt.middleCols(j + 1, n_ - j - 1).noalias() += Nt.col(j) * col.tail(n_ - j - 1).transpose();
+        }
       }
-    } else {
-      // Each stored P(i, j), i >= j, adds N_i P(i, j) to column j and, below the diagonal,
-      // N_j P(i, j) to column i.
-      Bt.setZero();
+      // B^T = G N_a^T P, and C = A P A^T = G N_a^T P N_a G.
       for (int j = 0; j < n_; ++j) {
-        const auto col = cov_.col(j).segment(j, n_ - j);
-        Bt.col(j).noalias() += Nt.middleCols(j, n_ - j) * col;
-        Bt.middleCols(j + 1, n_ - j - 1).noalias() += Nt.col(j) * col.tail(n_ - j - 1).transpose();
+        const Vec<kGaugeDim> b = gauge_inverse_ * Bt.col(j);
+        Bt.col(j) = b;
       }
-    }
-    // B^T = G N_a^T P, and C = A P A^T = G N_a^T P N_a G.
-    for (int j = 0; j < n_; ++j) {
-      const Vec<kGaugeDim> b = gauge_inverse_ * Bt.col(j);
-      Bt.col(j) = b;
-    }
-    Mat<kGaugeDim, kGaugeDim> NtB = Mat<kGaugeDim, kGaugeDim>::Zero();
-    const int rows = gauge_robot_only_ ? kRobotDim : n_;
-    for (int i = 0; i < rows; ++i) NtB.noalias() += Nt.col(i) * Bt.col(i).transpose();
-    const Mat<kGaugeDim, kGaugeDim> C = gauge_inverse_ * NtB;
-    const Mat<kGaugeDim, kGaugeDim> C_half = 0.25 * (C + C.transpose());
-    for (int j = 0; j < n_; ++j) {
-      const Vec<kGaugeDim> b = Bt.col(j) + C_half * dNt.col(j);
-      Bt.col(j) = b;
-    }
-    for (int j = 0; j < n_; ++j) {
-      auto col = cov_.col(j).segment(j, n_ - j);
-      col.noalias() += dNt.middleCols(j, n_ - j).transpose() * Bt.col(j);
-      col.noalias() += Bt.middleCols(j, n_ - j).transpose() * dNt.col(j);
+      Mat<kGaugeDim, kGaugeDim> NtB = Mat<kGaugeDim, kGaugeDim>::Zero();
+      const int rows = gauge_robot_only_ ? kRobotDim : n_;
+      for (int i = 0; i < rows; ++i) NtB.noalias() += Nt.col(i) * Bt.col(i).transpose();
+      const Mat<kGaugeDim, kGaugeDim> C = gauge_inverse_ * NtB;
+      const Mat<kGaugeDim, kGaugeDim> C_half = 0.25 * (C + C.transpose());
+      for (int j = 0; j < n_; ++j) {
+        const Vec<kGaugeDim> b = Bt.col(j) + C_half * dNt.col(j);
+        Bt.col(j) = b;
+      }
+      for (int j = 0; j < n_; ++j) {
+        auto col = cov_.col(j).segment(j, n_ - j);
+        col.noalias() += dNt.middleCols(j, n_ - j).transpose() * Bt.col(j);
+        col.noalias() += Bt.middleCols(j, n_ - j).transpose() * dNt.col(j);
+      }
     }
   }
 

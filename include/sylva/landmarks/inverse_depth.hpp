@@ -88,6 +88,7 @@ struct InverseDepthToPoint3 {
     return InverseDepth::point<T>(l);
   }
 
+  template <int = 0>  // compiled only where called (docs/build-time.md)
   Vec<3> operator()(const Vec<Robot_::kDim>& /*robot*/,
                     const Vec<6>& l,
                     JacobianRef<3, Robot_::kDim> J_to_x = {},
@@ -120,7 +121,8 @@ struct InverseDepthToPoint3 {
 /// (Civera, Davison, Montiel 2007): L = 4 sigma_d |cos a| / d with d the distance from the
 /// camera to the point, a the angle between the rays from the anchor and from the camera,
 /// sigma_d = sigma_rho / rho^2. Small L: the Euclidean parametrization is linear enough.
-inline double inverseDepthLinearityIndex(const Vec<3>& camera_position, const Vec<6>& l, double sigma_rho) {
+template <int = 0>  // compiled only where called (docs/build-time.md)
+double inverseDepthLinearityIndex(const Vec<3>& camera_position, const Vec<6>& l, double sigma_rho) {
   if (!camera_position.allFinite() || !l.allFinite() || !std::isfinite(sigma_rho) || sigma_rho < 0.0)
     fail(ErrorCode::kNonFinite, "inverseDepthLinearityIndex: inputs must be finite, sigma_rho >= 0");
   if (!(l[5] > 0.0))

@@ -95,6 +95,7 @@ struct InverseDepthRadiusToTree {
     return tree;
   }
 
+  template <int = 0>  // compiled only where called (docs/build-time.md)
   Vec<4> operator()(const Vec<Robot_::kDim>& /*robot*/,
                     const Vec<7>& l,
                     JacobianRef<4, Robot_::kDim> J_to_x = {},
@@ -138,7 +139,8 @@ struct InverseDepthRadiusToTree {
 /// Linearity index of the base centre of an IDR tree seen from `camera_position`: exactly
 /// `inverseDepthLinearityIndex` of its first six components (kappa does not enter), so a
 /// tree is switched IDR -> XYZ-R by the same rule as a point inverse depth -> XYZ.
-inline double inverseDepthRadiusLinearityIndex(const Vec<3>& camera_position,
+template <int = 0>  // compiled only where called (docs/build-time.md)
+double inverseDepthRadiusLinearityIndex(const Vec<3>& camera_position,
                                                const Vec<7>& l,
                                                double sigma_rho) {
   return inverseDepthLinearityIndex(camera_position, Vec<6>(l.head<6>()), sigma_rho);

@@ -102,11 +102,13 @@ struct InverseDepthInitialization {
   Vec<3> measurement(const Vec<2>& pixel) const { return Vec<3>(pixel[0], pixel[1], rho0_); }
 
   /// diag(sigma_px^2, sigma_px^2, sigma_rho^2) for independent pixel noise `pixel_sigma`.
+  template <int = 0>  // compiled only where called (docs/build-time.md)
   Gaussian<3> noise(double pixel_sigma) const {
     return Gaussian<3>::sigmas(Vec<3>(pixel_sigma, pixel_sigma, sigma_rho_));
   }
 
   /// The pixel noise `pixel_noise` (any 2x2 covariance) with sigma_rho^2 appended.
+  template <int = 0>  // compiled only where called (docs/build-time.md)
   Gaussian<3> noise(const Gaussian<2>& pixel_noise) const {
     Mat<3, 3> covariance = Mat<3, 3>::Zero();
     covariance.topLeftCorner<2, 2>() = pixel_noise.covariance();
@@ -133,6 +135,7 @@ struct InverseDepthInitialization {
   }
 
   /// The landmark [t, theta, phi, rho0] with J_l_x (6x7) and J_l_z (6x3).
+  template <int = 0>  // compiled only where called (docs/build-time.md)
   Vec<6> operator()(const Vec<7>& camera,
                     const Vec<3>& z,
                     JacobianRef<6, 7> J_l_x = {},

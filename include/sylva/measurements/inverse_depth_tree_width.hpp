@@ -120,7 +120,8 @@ inline std::string errorReason(const Error& e) {
 }
 
 /// dm/dtheta and dm/dphi (3x2) of m(theta, phi) in landmarks/inverse_depth.hpp.
-inline Mat<3, 2> inverseDepthDirectionJacobian(double theta, double phi) {
+template <int = 0>  // compiled only where called (docs/build-time.md)
+Mat<3, 2> inverseDepthDirectionJacobian(double theta, double phi) {
   const double ct = std::cos(theta), st = std::sin(theta);
   const double cp = std::cos(phi), sp = std::sin(phi);
   Mat<3, 2> J;
@@ -168,6 +169,7 @@ struct InverseDepthTreeWidth {
   }
 
   /// Prediction with the analytic Jacobians J_z_x (3x7) and J_z_l (3x7).
+  template <int = 0>  // compiled only where called (docs/build-time.md)
   Vec<3> operator()(const Vec<7>& camera,
                     const Vec<7>& l,
                     JacobianRef<3, 7> J_z_x = {},
@@ -266,6 +268,7 @@ struct InverseDepthRadiusInitialization {
   }
 
   /// The [u, v, w] noise `uvw_noise` (any 3x3 covariance) with sigma_rho^2 appended.
+  template <int = 0>  // compiled only where called (docs/build-time.md)
   Gaussian<4> noise(const Gaussian<3>& uvw_noise) const {
     Mat<4, 4> covariance = Mat<4, 4>::Zero();
     covariance.topLeftCorner<3, 3>() = uvw_noise.covariance();
@@ -291,6 +294,7 @@ struct InverseDepthRadiusInitialization {
   }
 
   /// The landmark [t, theta, phi, rho0, kappa] with J_l_x (7x7) and J_l_z (7x4).
+  template <int = 0>  // compiled only where called (docs/build-time.md)
   Vec<7> operator()(const Vec<7>& camera,
                     const Vec<4>& z,
                     JacobianRef<7, 7> J_l_x = {},

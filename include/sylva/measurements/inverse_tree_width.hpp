@@ -113,6 +113,7 @@ struct InverseTreeWidth {
   }
 
   /// The XYZ-R landmark [base, r] with J_to_x (4x7), J_to_l (4x3) and J_to_z (4x3).
+  template <int = 0>  // compiled only where called (docs/build-time.md)
   Vec<4> operator()(const Vec<7>& camera,
                     const Vec<3>& base,
                     const Vec<3>& z,

@@ -122,6 +122,7 @@ struct PinholePointMath {
   }
 
   /// dz/dh (2x3) of the projection at h.
+  template <int = 0>  // compiled only where called (docs/build-time.md)
   static Mat<2, 3> projectionJacobian(const PinholeCamera& intrinsics, const Vec<3>& h) {
     const double inv_z = 1.0 / h[2];
     Mat<2, 3> J;
@@ -131,6 +132,7 @@ struct PinholePointMath {
   }
 
   /// d (R(q / |q|)^T w) / dq (3x4) for the stored (not necessarily unit) quaternion q.
+  template <int = 0>  // compiled only where called (docs/build-time.md)
   static Mat<3, 4> rotateTransposedJacobianNormalized(const Vec<4>& q, const Vec<3>& w) {
     const double q_norm = q.norm();
     const Vec<4> q_unit = q / q_norm;
@@ -176,6 +178,7 @@ struct PinholePoint<Point3> {
   }
 
   /// Prediction with the analytic Jacobians J_z_x (2x7) and J_z_l (2x3).
+  template <int = 0>  // compiled only where called (docs/build-time.md)
   Vec<2> operator()(const Vec<7>& camera,
                     const Vec<3>& point,
                     JacobianRef<2, 7> J_z_x = {},
@@ -243,6 +246,7 @@ struct PinholePoint<InverseDepth> {
   }
 
   /// Prediction with the analytic Jacobians J_z_x (2x7) and J_z_l (2x6).
+  template <int = 0>  // compiled only where called (docs/build-time.md)
   Vec<2> operator()(const Vec<7>& camera,
                     const Vec<6>& l,
                     JacobianRef<2, 7> J_z_x = {},

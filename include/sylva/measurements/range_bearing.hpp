@@ -111,6 +111,7 @@ struct RangeBearing {
   }
 
   /// Prediction with the analytic Jacobians of eq. 2.30.
+  template <int = 0>  // compiled only where called (docs/build-time.md)
   Vec<2> operator()(const Vec<3>& robot,
                     const Vec<2>& landmark,
                     JacobianRef<2, 3> J_z_x = {},
@@ -169,6 +170,7 @@ struct InverseRangeBearing {
     return Vec<2, T>(sensor[0] + z[0] * cos(a), sensor[1] + z[0] * sin(a));
   }
 
+  template <int = 0>  // compiled only where called (docs/build-time.md)
   Vec<2> operator()(const Vec<3>& robot,
                     const Vec<2>& z,
                     JacobianRef<2, 3> J_l_x = {},

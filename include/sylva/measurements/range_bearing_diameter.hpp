@@ -59,6 +59,7 @@ struct RangeBearingDiameter {
   }
 
   /// Prediction with the analytic Jacobians (see the file comment).
+  template <int = 0>  // compiled only where called (docs/build-time.md)
   Vec<3> operator()(const Vec<3>& robot,
                     const Vec<3>& landmark,
                     JacobianRef<3, 3> J_z_x = {},
@@ -106,6 +107,7 @@ struct InverseRangeBearingDiameter {
     return Vec<3, T>(centre[0], centre[1], T(0.5) * z[2]);
   }
 
+  template <int = 0>  // compiled only where called (docs/build-time.md)
   Vec<3> operator()(const Vec<3>& robot,
                     const Vec<3>& z,
                     JacobianRef<3, 3> J_l_x = {},

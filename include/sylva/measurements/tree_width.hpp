@@ -122,6 +122,7 @@ struct TreeWidth {
   }
 
   /// Prediction with the analytic Jacobians J_z_x (3x7) and J_z_l (3x4).
+  template <int = 0>  // compiled only where called (docs/build-time.md)
   Vec<3> operator()(const Vec<7>& camera,
                     const Vec<4>& tree,
                     JacobianRef<3, 7> J_z_x = {},
@@ -211,6 +212,7 @@ struct TreeWidth {
     }
   }
 
+  template <int = 0>  // compiled only where called (docs/build-time.md)
   static void checkEllipse(
       double r, double n1, double n2, double C3, double d11, double d13, double d33) {
     const double min_depth = C3 - r * std::sqrt(n1 * n1 + n2 * n2);

@@ -93,6 +93,7 @@ struct Ackermann2D : Pose2D {
   }
 
   /// Propagates `x` over `dt` seconds under control `u` (see the file comment).
+  template <int = 0>  // compiled only where called (docs/build-time.md)
   State operator()(const State& x,
                    const Control& u,
                    double dt,

@@ -44,6 +44,7 @@ struct Ackermann2DWithBias : Pose2DWithExtras<5> {
   const Ackermann2D& car() const { return car_; }
 
   /// Propagates `x` over `dt` under the measured control `u`.
+  template <int = 0>  // compiled only where called (docs/build-time.md)
   State operator()(const State& x,
                    const Control& u,
                    double dt,

@@ -103,6 +103,7 @@ struct ConstantVelocity3D {
   }
 
   /// Mean prediction over `dt` seconds, with J_x and J_n when requested.
+  template <int = 0>  // compiled only where called (docs/build-time.md)
   State operator()(const State& x,
                    const Control& u,
                    double dt,
@@ -132,6 +133,7 @@ struct ConstantVelocity3D {
 
   /// `x` (whose velocity is in the world frame, as the simulators give it) with its velocity in
   /// this model's frame.
+  template <int = 0>  // compiled only where called (docs/build-time.md)
   State fromWorldVelocity(const State& x) const {
     if (velocity_frame == VelocityFrame::kWorld) return x;
     State out = x;
@@ -143,6 +145,7 @@ struct ConstantVelocity3D {
   /// (core/gauge.hpp): the position like a point, the orientation by the turn on the left
   /// (dq = 1/2 (0, e_z) (x) q), the velocity with the scale and, in the world frame, with the
   /// turn; the angular velocity, in the camera frame, not at all.
+  template <int = 0>  // compiled only where called (docs/build-time.md)
   Mat<13, kGaugeDim> gaugeDirections(const State& x) const {
     Mat<13, kGaugeDim> N = Mat<13, kGaugeDim>::Zero();
     N.topLeftCorner<3, 3>().setIdentity();
@@ -162,6 +165,7 @@ struct ConstantVelocity3D {
 
   /// Jacobian of `normalize` at x: identity but for the quaternion block (I - u u^T) / |q|,
   /// u = q / |q|. The filter applies it to the covariance when it renormalizes after an update.
+  template <int = 0>  // compiled only where called (docs/build-time.md)
   static Mat<13, 13> normalizationJacobian(const State& x) {
     Mat<13, 13> N = Mat<13, 13>::Identity();
     const Vec<4> q = x.segment<4>(3);
@@ -198,6 +202,7 @@ struct ConstantVelocity3D {
   /// terms need |v| > 0; for a camera at rest they are left out.) Without an update in
   /// between (from = x_{k|k}), d = Dv = 0 and it is the textbook Jacobian on the quaternion's
   /// tangent space.
+  template <int = 0>  // compiled only where called (docs/build-time.md)
   Mat<13, 13> firstEstimatesJacobian(const State& from, const State& to, double dt) const {
     Mat<13, 13> F;
     const State predicted = (*this)(from, Control(), dt, F);  // the textbook blocks at `from`

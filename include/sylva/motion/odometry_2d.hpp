@@ -45,6 +45,7 @@ struct Odometry2D : Pose2D {
   using Control = Vec<3>;
 
   /// Composes `x` with the increment `u` (`dt` is ignored, see the file comment).
+  template <int = 0>  // compiled only where called (docs/build-time.md)
   State operator()(const State& x,
                    const Control& u,
                    double /*dt*/,

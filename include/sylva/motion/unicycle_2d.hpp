@@ -30,6 +30,7 @@ struct Unicycle2D : Pose2D {
   using Control = Vec<2>;
 
   /// Propagates `x` over `dt` seconds under control `u` (eq. 2.12-2.14).
+  template <int = 0>  // compiled only where called (docs/build-time.md)
   State operator()(const State& x,
                    const Control& u,
                    double dt,

@@ -46,6 +46,7 @@ struct Unicycle2DWithBias : Pose2DWithExtras<6> {
   static double moving(const Control& u) { return u[0] != 0.0 || u[1] != 0.0 ? 1.0 : 0.0; }
 
   /// Propagates `x` over `dt` under the command `u`.
+  template <int = 0>  // compiled only where called (docs/build-time.md)
   State operator()(const State& x,
                    const Control& u,
                    double dt,

@@ -42,7 +42,7 @@
 #include "sylva/core/angles.hpp"
 #include "sylva/core/error.hpp"
 #include "sylva/core/types.hpp"
-#include "sylva/measurements/laser_camera.hpp"
+#include "sylva/laser_camera/sensor.hpp"
 #include "sylva/sim/laser_scene_2d.hpp"
 #include "sylva/sim/random.hpp"
 

@@ -37,6 +37,7 @@
 
 #include "sylva/core/types.hpp"
 #include "sylva/detail/model_traits.hpp"
+#include "sylva/diff/evaluate.hpp"
 #include "sylva/diff/numeric_diff.hpp"
 
 namespace sylva::testing {

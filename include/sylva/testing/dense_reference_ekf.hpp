@@ -9,9 +9,11 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
+#include <Eigen/LU>
 
 #include "sylva/core/types.hpp"
 #include "sylva/detail/model_traits.hpp"
+#include "sylva/diff/evaluate.hpp"
 
 namespace sylva::testing {
 

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include <sylva/core/angles.hpp>
-#include <sylva/measurements/laser_camera_calibration.hpp>
+#include <sylva/laser_camera/calibration.hpp>
 #include <sylva/sim/random.hpp>
 
 #include "error_helpers.hpp"

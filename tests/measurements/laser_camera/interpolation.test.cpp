@@ -5,7 +5,7 @@
 #include <limits>
 
 #include <sylva/core/angles.hpp>
-#include <sylva/measurements/laser_range_interpolation.hpp>
+#include <sylva/laser_camera/range_interpolation.hpp>
 
 #include "error_helpers.hpp"
 #include "sylva_catch.hpp"

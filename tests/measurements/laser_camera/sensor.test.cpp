@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include <sylva/measurements/laser_camera.hpp>
+#include <sylva/laser_camera/sensor.hpp>
 #include <sylva/sim/random.hpp>
 
 #include "error_helpers.hpp"

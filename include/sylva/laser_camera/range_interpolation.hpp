@@ -46,7 +46,8 @@ struct InterpolatedLaserRange {
   double incidence_rad;
 };
 
-inline InterpolatedLaserRange interpolateLaserRange(double phi, double a_i, double r_i, double a_j, double r_j) {
+template <int = 0>  // compiled only where called (docs/build-time.md)
+InterpolatedLaserRange interpolateLaserRange(double phi, double a_i, double r_i, double a_j, double r_j) {
   if (!std::isfinite(phi) || !std::isfinite(a_i) || !std::isfinite(r_i) || !std::isfinite(a_j) ||
       !std::isfinite(r_j))
     fail(ErrorCode::kNonFinite, "interpolateLaserRange: an angle or a reading is not finite");

@@ -68,6 +68,7 @@ class LaserCameraCalibration {
   }
 
   /// Least-squares fit of e(theta_c) = theta_l - theta_c of the given degree (Sec. 3.3.2).
+  template <int = 0>  // compiled only where called (docs/build-time.md)
   static LaserCameraCalibration fit(const std::vector<CalibrationPair>& pairs, int degree) {
     if (degree < 0 || degree > kMaxDegree) {
       std::ostringstream os;

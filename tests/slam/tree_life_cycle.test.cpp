@@ -9,7 +9,7 @@
 #include <Eigen/Geometry>
 
 #include <sylva/filter/ekf.hpp>
-#include <sylva/filter/tree_life_cycle.hpp>
+#include <sylva/slam/tree_life_cycle.hpp>
 #include <sylva/measurements/tree_width.hpp>
 
 #include "copy_init.hpp"

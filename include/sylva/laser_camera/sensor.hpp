@@ -74,8 +74,8 @@
 #include "sylva/core/angles.hpp"
 #include "sylva/core/error.hpp"
 #include "sylva/core/types.hpp"
-#include "sylva/measurements/laser_camera_calibration.hpp"
-#include "sylva/measurements/laser_range_interpolation.hpp"
+#include "sylva/laser_camera/calibration.hpp"
+#include "sylva/laser_camera/range_interpolation.hpp"
 #include "sylva/measurements/laser_scan_geometry.hpp"
 
 namespace sylva {
@@ -149,6 +149,7 @@ class LaserCameraSensor {
 
   /// Range and bearing of `line` from the readings `ranges` (one per beam), or the reason
   /// why not. See the file comment.
+  template <int = 0>  // compiled only where called (docs/build-time.md)
   LaserCameraMeasurement measure(const VerticalLineDetection& line, const std::vector<double>& ranges) const {
     if (!std::isfinite(line.bearing_rad) || std::isnan(line.image_top_y) || std::isnan(line.image_bottom_y))
       fail(ErrorCode::kNonFinite, "LaserCameraSensor::measure: the line detection is not finite");
