@@ -18,7 +18,7 @@ namespace {
 // z = [ahead_m, left_m]. Think of a stereo camera or a laser scanner that reports the
 // centre of a pole.
 struct RelativePosition {
-  using Robot = sylva::Unicycle2D;  // the robot the sensor rides on
+  using Robot = sylva::Pose2D;      // the pose the sensor sees: serves every planar robot
   using Landmark = sylva::Point2;   // the landmark parametrization it observes
   static constexpr int kDim = 2;    // size of one measurement
   static constexpr const char* kName = "RelativePosition";  // appears in error messages
@@ -44,7 +44,7 @@ struct RelativePosition {
 // The landmark from one measurement:  l = t + R(theta) z, with its Jacobians
 // J_l_x = dl/d[x, y, theta] (2x3) and J_l_z = dl/dz (2x2).
 struct InverseRelativePosition {
-  using Robot = sylva::Unicycle2D;
+  using Robot = sylva::Pose2D;
   using Landmark = sylva::Point2;
   static constexpr int kMeasurementDim = 2;
   static constexpr const char* kName = "InverseRelativePosition";
@@ -96,6 +96,61 @@ struct RelativePositionAnalytic : RelativePosition {
 };
 // [tutorial-analytic end]
 
+// [tutorial-robot begin]
+// A differential-drive robot whose gyro reads the turn rate with an unknown bias b, which
+// the filter estimates as a state: x = [x, y, theta, b], control u = [v, omega_gyro],
+// noise n = [n_v, n_omega, n_b] (speed and gyro noise, and the rate at which the bias
+// drifts). Deriving from Pose2DWithExtras<4> gives it a pose view (`using Pose = Pose2D`
+// and `pose(x, J)`, the first three entries), `normalize` and `difference`: every model
+// written for Pose2D serves it unchanged.
+struct GyroBiasUnicycle : sylva::Pose2DWithExtras<4> {
+  static constexpr int kControlDim = 2;
+  static constexpr int kNoiseDim = 3;
+  static constexpr const char* kName = "GyroBiasUnicycle";
+  using Control = sylva::Vec<2>;
+
+  // The motion with noise n, generic in the scalar: what checkMotionJacobians differentiates.
+  template <typename T>
+  sylva::Vec<4, T> propagate(const sylva::Vec<4, T>& x, const sylva::Vec<2, T>& u,
+                             const sylva::Vec<3, T>& n, double dt) const {
+    using std::cos;
+    using std::sin;
+    const T v = u[0] + n[0];
+    const T omega = u[1] + n[1] - x[3];              // the gyro reads omega + b
+    const T heading = x[2] + T(0.5 * dt) * omega;    // the heading halfway through the step
+    sylva::Vec<4, T> next;
+    next[0] = x[0] + T(dt) * v * cos(heading);
+    next[1] = x[1] + T(dt) * v * sin(heading);
+    next[2] = sylva::wrapAngle(T(x[2] + T(dt) * omega));
+    next[3] = x[3] + T(dt) * n[2];
+    return next;
+  }
+
+  // x' = f(x, u, dt) with J_x = dx'/dx (4x4) and J_n = dx'/dn (4x3), at n = 0.
+  sylva::Vec<4> operator()(const sylva::Vec<4>& x, const Control& u, double dt,
+                           sylva::JacobianRef<4, 4> J_x = {},
+                           sylva::JacobianRef<4, 3> J_n = {}) const {
+    const double v = u[0];
+    const double heading = x[2] + 0.5 * dt * (u[1] - x[3]);
+    const double c = std::cos(heading);
+    const double s = std::sin(heading);
+    if (J_x) {
+      *J_x << 1.0, 0.0, -dt * v * s, 0.5 * dt * dt * v * s,  //
+          0.0, 1.0, dt * v * c, -0.5 * dt * dt * v * c,      //
+          0.0, 0.0, 1.0, -dt,                                //
+          0.0, 0.0, 0.0, 1.0;
+    }
+    if (J_n) {
+      *J_n << dt * c, -0.5 * dt * dt * v * s, 0.0,  //
+          dt * s, 0.5 * dt * dt * v * c, 0.0,       //
+          0.0, dt, 0.0,                             //
+          0.0, 0.0, dt;
+    }
+    return propagate<double>(x, u, sylva::Vec<3>::Zero(), dt);
+  }
+};
+// [tutorial-robot end]
+
 // A deliberately wrong Jacobian (one sign flipped), to show that the checker notices.
 struct RelativePositionWrongSign : RelativePosition {
   sylva::Vec<2> operator()(const sylva::Vec<3>& robot,
@@ -111,7 +166,7 @@ struct RelativePositionWrongSign : RelativePosition {
 // [tutorial-residual begin]
 // Bearing only, e.g. a camera that sees the landmark but not how far away it is.
 struct Bearing {
-  using Robot = sylva::Unicycle2D;
+  using Robot = sylva::Pose2D;
   using Landmark = sylva::Point2;
   static constexpr int kDim = 1;
   static constexpr const char* kName = "Bearing";
@@ -251,6 +306,75 @@ TEST_CASE("tutorial: a residual keeps a bearing innovation small across +-pi") {
   CHECK(ekf.landmarkMean<sylva::Point2>(4).norm() < 5.1);
 }
 
+TEST_CASE("tutorial: your own robot with an extra state uses the Pose2D models through its pose view") {
+  const auto sensor_noise = sylva::Gaussian<2>::sigmas({0.05, 0.05});
+  // [tutorial-robot-use begin]
+  // Known start, an unknown gyro bias of about +-0.02 rad/s.
+  const sylva::Vec<4> x0 = sylva::Vec<4>::Zero();
+  const sylva::Mat<4, 4> P0 = sylva::Vec<4>(0.0, 0.0, 0.0, 0.02 * 0.02).asDiagonal();
+  sylva::Ekf<GyroBiasUnicycle, sylva::Point2> ekf(x0, P0);
+  const auto motion_noise = sylva::Gaussian<3>::sigmas({0.1, 0.01, 1e-4});  // [m/s, rad/s, rad/s^2]
+
+  // The models of Steps 1 and 2, written for Pose2D, serve this robot as they are: the filter
+  // evaluates them at pose(x) and chains J_z_x = J_z_pose J_pose_x.
+  ekf.add(1, InverseRelativePosition{}, sylva::Vec<2>(3.0, 1.0), sensor_noise);
+  ekf.predict(sylva::Vec<2>(1.0, 0.2), 1.0, motion_noise);
+  ekf.update(RelativePosition{}, 1, sylva::Vec<2>(2.144, 0.484), sensor_noise);
+  const double bias = ekf.robotMean()[3];  // the estimated gyro bias, rad/s
+  // [tutorial-robot-use end]
+  CHECK(std::isfinite(bias));
+
+  // The chained Jacobian: the pose columns are the model's own, the bias column is zero.
+  const auto lin = ekf.linearize(RelativePositionAnalytic{}, 1);
+  sylva::Mat<2, 3> J_z_pose;
+  RelativePositionAnalytic{}(sylva::Vec<3>(ekf.robotMean().head<3>()), ekf.landmarkMean<sylva::Point2>(1), J_z_pose);
+  CHECK((lin.J_z_x.leftCols<3>() - J_z_pose).cwiseAbs().maxCoeff() < 1e-12);
+  CHECK(lin.J_z_x.col(3).isZero(0.0));
+}
+
+TEST_CASE("tutorial: the robot's Jacobians pass the numerical check") {
+  const sylva::Vec<4> states[] = {{1.0, -2.0, 0.4, 0.01}, {0.0, 0.0, sylva::kPi - 1e-9, -0.02}, {5.0, 3.0, -2.0, 0.0}};
+  const sylva::Vec<2> controls[] = {{1.0, 0.2}, {0.0, 0.0}, {-0.5, 1.5}};
+  for (const sylva::Vec<4>& x : states) {
+    for (const sylva::Vec<2>& u : controls) {
+      for (const double dt : {0.1, 1.0}) {
+        const auto report = sylva::testing::checkMotionJacobians(GyroBiasUnicycle{}, x, u, dt);
+        INFO(report.message());
+        CHECK(report.ok);
+      }
+    }
+  }
+}
+
+TEST_CASE("tutorial: the filter learns the gyro bias from the landmarks") {
+  // A deterministic run: a loop past four landmarks, a true bias of 0.015 rad/s, made-up
+  // measurement errors well inside the sensor noise.
+  const auto sensor_noise = sylva::Gaussian<2>::sigmas({0.05, 0.05});
+  const auto motion_noise = sylva::Gaussian<3>::sigmas({0.05, 0.01, 1e-4});
+  const double true_bias = 0.015;
+  const double prior_sigma = 0.02;
+  sylva::Vec<4> truth(0.0, 0.0, 0.0, true_bias);
+  sylva::Ekf<GyroBiasUnicycle, sylva::Point2> ekf(
+      sylva::Vec<4>::Zero(), sylva::Mat<4, 4>(sylva::Vec<4>(0.0, 0.0, 0.0, prior_sigma * prior_sigma).asDiagonal()));
+  const sylva::Vec<2> landmarks[] = {{4.0, 2.0}, {6.0, 8.0}, {-1.0, 7.0}, {-3.0, 1.0}};
+  const auto seen = [&](int step, int i) {
+    const sylva::Vec<2> error(0.02 * std::sin(3.0 * step + i), -0.02 * std::cos(5.0 * step + 2 * i));
+    return sylva::Vec<2>(RelativePosition{}.predict<double>(sylva::Vec<3>(truth.head<3>()), landmarks[i]) + error);
+  };
+  for (int i = 0; i < 4; ++i) ekf.add(i, InverseRelativePosition{}, seen(0, i), sensor_noise);
+  for (int step = 1; step <= 200; ++step) {
+    const sylva::Vec<2> command(0.5, 0.15);                       // what the robot is told
+    const sylva::Vec<2> gyro(command[0], command[1] + true_bias);  // what its sensors read
+    truth = GyroBiasUnicycle{}(truth, gyro, 0.2);
+    ekf.predict(gyro, 0.2, motion_noise);
+    for (int i = 0; i < 4; ++i) ekf.update(RelativePosition{}, i, seen(step, i), sensor_noise);
+  }
+  const double sigma = std::sqrt(ekf.robotCovariance()(3, 3));
+  INFO("bias " << ekf.robotMean()[3] << " +- " << sigma << ", true " << true_bias);
+  CHECK(std::abs(ekf.robotMean()[3] - true_bias) < 3.0 * sigma);
+  CHECK(sigma < 0.25 * prior_sigma);
+}
+
 TEST_CASE("tutorial: a model reports degenerate geometry and the filter stays unchanged") {
   Filter ekf(sylva::Vec<3>::Zero(), sylva::Mat<3, 3>::Identity() * 1e-4);
   ekf.add(2,
@@ -279,7 +403,9 @@ TEST_CASE("tutorial page quotes the tested code verbatim") {
                              "tutorial-use",
                              "tutorial-analytic",
                              "tutorial-check",
-                             "tutorial-residual"}) {
+                             "tutorial-residual",
+                             "tutorial-robot",
+                             "tutorial-robot-use"}) {
     const std::string code = sylva_docs::markedRegion(__FILE__, region);
     INFO("region " << region);
     REQUIRE(code.size() > 100);
