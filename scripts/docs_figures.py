@@ -339,6 +339,31 @@ def moving_objects_seed_figures(out):
     }
 
 
+def victoria_park_figures(out):
+    """docs/examples/victoria-park.md: the laser offset's sign checked on the data (point
+    variant, three offsets) and the per-sample prediction against the per-scan one. Every key
+    starts with "real.": without the recording the runs are skipped."""
+    needed = ("default", "odometry", "left_0", "right")
+    if not all(k in out for k in needed):
+        return {}
+    thousands = lambda n: f"{n:,}"
+    rows = []
+    for label, run in (("+0.5 (left)", out["default"]["point"]), ("0", out["left_0"]["point"]),
+                       ("-0.5 (right)", out["right"]["point"])):
+        rows.append([label, fixed(run["gps_rmse_m"], 3), fixed(run["gps_median_m"], 3), run["landmarks"],
+                     thousands(run["readings_paired"])])
+    laser = table(["`--laser-left` (b)", "GPS RMS valid (m)", "median (m)", "landmarks", "readings paired"], rows)
+    both = lambda run, key, digits: f"{run['point'][key]:.{digits}f} / {run['tree'][key]:.{digits}f}"
+    return {
+        # Indented, so that the table stays inside the list item it belongs to.
+        "real.laser_left_table": laser.replace("\n|", "\n  |") + "  ",
+        "real.scan.gps_rmse_m": both(out["default"], "gps_rmse_m", 3),
+        "real.odometry.gps_rmse_m": both(out["odometry"], "gps_rmse_m", 3),
+        "real.scan.predictions": thousands(out["default"]["point"]["predictions"]),
+        "real.odometry.predictions": thousands(out["odometry"]["point"]["predictions"]),
+    }
+
+
 SOURCES = {
     "range-bearing-slam": {
         "file": "docs/figures/range-bearing-slam.figures.json",
@@ -382,6 +407,18 @@ SOURCES = {
         "quick": {f"seed_{k}": f"{{bin}}/moving_objects/moving_objects --seed {k} --slam-seeds 2 --json --svg-prefix ''"
                   for k in range(1, 3)},
         "figures": moving_objects_seed_figures,
+    },
+    "victoria-park": {
+        "file": "docs/examples/victoria-park.figures.json",
+        "runs": {"default?": "{bin}/victoria_park/victoria_park --json",
+                 "odometry?": "{bin}/victoria_park/victoria_park --predict odometry --json",
+                 "left_0?": "{bin}/victoria_park/victoria_park --variant point --laser-left 0 --json",
+                 "right?": "{bin}/victoria_park/victoria_park --variant point --laser-left -0.5 --json"},
+        "quick": {"default?": "{bin}/victoria_park/victoria_park --duration 120 --json",
+                  "odometry?": "{bin}/victoria_park/victoria_park --duration 120 --predict odometry --json",
+                  "left_0?": "{bin}/victoria_park/victoria_park --duration 120 --variant point --laser-left 0 --json",
+                  "right?": "{bin}/victoria_park/victoria_park --duration 120 --variant point --laser-left -0.5 --json"},
+        "figures": victoria_park_figures,
     },
 }
 
