@@ -258,8 +258,8 @@ def render(result, cpu):
             "one `update` compiles the code of every policy that applies to the filter's types (the "
             "iterated update's iterations, first-estimates and ideal linearization points, the "
             "invariant EKF's transport for a planar robot), and each distinct small matrix size "
-            "compiles Eigen's Cholesky factorization once more (`checkCovariance`, `Gaussian`, "
-            "S). What would bring the sample within its target is a restructuring of "
+            "compiles Eigen's Cholesky factorization once more (here the prior's check in the "
+            "constructor, `checkCovariance<3>`, and the factor of S in `update`). What would bring the sample within its target is a restructuring of "
             "`ekf.hpp`: kernels that depend only on block sizes, and policies compiled only where "
             "they are chosen.")
         add("")
