@@ -113,12 +113,7 @@ class TreeLifeCycle {
   /// covariance through InverseDepthToPoint3's Jacobian). Returns the converted ids.
   template <typename Filter>
   std::vector<Id> convertInverseDepth(Filter& ekf) const {
-    std::vector<Id> ready;
-    for (const auto& slot : ekf.slots()) {
-      if (ekf.template holds<InverseDepth>(slot.id) && to_xyz_(ekf, slot.id)) ready.push_back(slot.id);
-    }
-    for (Id id : ready) ekf.reparametrize(id, InverseDepthToPoint3<Pose3D>{});
-    return ready;
+    return convertWhereRuleFires<InverseDepth>(ekf, InverseDepthToPoint3<Pose3D>{});
   }
 
   /// Converts every InverseDepthRadius tree whose ToXyz rule fires straight to XYZ-R (its
@@ -126,12 +121,7 @@ class TreeLifeCycle {
   /// Returns the converted ids.
   template <typename Filter>
   std::vector<Id> convertInverseDepthRadius(Filter& ekf) const {
-    std::vector<Id> ready;
-    for (const auto& slot : ekf.slots()) {
-      if (ekf.template holds<InverseDepthRadius>(slot.id) && to_xyz_(ekf, slot.id)) ready.push_back(slot.id);
-    }
-    for (Id id : ready) ekf.reparametrize(id, InverseDepthRadiusToTree<Pose3D>{});
-    return ready;
+    return convertWhereRuleFires<InverseDepthRadius>(ekf, InverseDepthRadiusToTree<Pose3D>{});
   }
 
   /// Converts XYZ landmark `id`, observed in this frame with the tree-width measurement `z`
@@ -149,6 +139,18 @@ class TreeLifeCycle {
   }
 
  private:
+  /// Reparametrizes, through `conversion`, every landmark of type `From` whose ToXyz rule
+  /// fires; the rule is asked for every landmark before any is converted.
+  template <typename From, typename Filter, typename Conversion>
+  std::vector<Id> convertWhereRuleFires(Filter& ekf, const Conversion& conversion) const {
+    std::vector<Id> ready;
+    for (const auto& slot : ekf.slots()) {
+      if (ekf.template holds<From>(slot.id) && to_xyz_(ekf, slot.id)) ready.push_back(slot.id);
+    }
+    for (Id id : ready) ekf.reparametrize(id, conversion);
+    return ready;
+  }
+
   InverseTreeWidth inverse_;
   ToXyz to_xyz_;
   ToTree to_tree_;
