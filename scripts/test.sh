@@ -9,6 +9,10 @@
 #   bash scripts/test.sh --consumer      also installs sylva into a temporary prefix and
 #                                        builds and runs tests/consumer against it
 #   bash scripts/test.sh --skip-main     leaves out the Release phase (with the flags above)
+#   bash scripts/test.sh --examples-only the Release phase builds examples and benchmarks and
+#                                        runs their smoke runs and the repository checks, but
+#                                        not the unit tests: CI's split (.ci/run), which
+#                                        builds and runs the unit tests under the sanitizers
 #
 # Missing Debian packages are installed with apt-get (as root, or through sudo).
 # Environment: SYLVA_BUILD_ROOT (default <repo>/build) holds the build directories,
@@ -22,16 +26,18 @@
 # sylva_add_example_smoke_test() (see the top-level CMakeLists.txt), label "smoke".
 set -euo pipefail
 
-usage() { sed -n '2,22p' "$0" | sed 's/^# \{0,1\}//'; }
+usage() { sed -n '2,26p' "$0" | sed 's/^# \{0,1\}//'; }
 
 run_main=1
 run_sanitize=0
 run_consumer=0
+unit_tests=ON
 for arg in "$@"; do
   case "$arg" in
     --sanitize) run_sanitize=1 ;;
     --consumer) run_consumer=1 ;;
     --skip-main) run_main=0 ;;
+    --examples-only) unit_tests=OFF ;;
     -h | --help) usage; exit 0 ;;
     *) echo "test.sh: unknown option '$arg'" >&2; usage >&2; exit 2 ;;
   esac
@@ -74,14 +80,16 @@ run_ctest() {
 
 # ---- Release: tests, examples and benchmarks ---------------------------------------------
 if ((run_main)); then
-  begin "Release build (tests, examples, benchmarks, ${SYLVA_CXX:-c++}) in $build_root/test"
+  what="tests, examples, benchmarks"
+  if [[ "$unit_tests" == OFF ]]; then what="examples, benchmarks, their smoke runs"; fi
+  begin "Release build ($what, ${SYLVA_CXX:-c++}) in $build_root/test"
   # -O1 rather than CMake's Release -O3: the optimizer's share of the build time grows with
   # the level (examples/victoria_park at -O2: 117 s of g++ 12, at -O1: 85 s), and the
   # tests and smoke runs do not need the speed (scripts/run_benchmarks.sh and
   # scripts/real_data_report.sh build what they time at -O3 in builds of their own).
   cmake -S "$repo" -B "$build_root/test" -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS_RELEASE="-O1 -DNDEBUG" \
     ${SYLVA_CXX:+-DCMAKE_CXX_COMPILER="$SYLVA_CXX"} \
-    -DSYLVA_BUILD_TESTS=ON -DSYLVA_BUILD_EXAMPLES=ON -DSYLVA_BUILD_BENCHMARKS=ON
+    -DSYLVA_BUILD_TESTS=ON -DSYLVA_UNIT_TESTS="$unit_tests" -DSYLVA_BUILD_EXAMPLES=ON -DSYLVA_BUILD_BENCHMARKS=ON
   cmake --build "$build_root/test" -j "$jobs"
   finish "Release build"
   begin "ctest (Release)"
@@ -100,7 +108,7 @@ if ((run_sanitize)); then
   cmake -S "$repo" -B "$build_root/sanitize" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
     -DCMAKE_CXX_COMPILER="${SYLVA_SANITIZE_CXX:-clang++}" \
     -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1" \
-    -DSYLVA_BUILD_TESTS=ON -DSYLVA_BUILD_EXAMPLES=OFF -DSYLVA_BUILD_BENCHMARKS=OFF \
+    -DSYLVA_BUILD_TESTS=ON -DSYLVA_UNIT_TESTS=ON -DSYLVA_BUILD_EXAMPLES=OFF -DSYLVA_BUILD_BENCHMARKS=OFF \
     -DSYLVA_SANITIZERS="address;undefined"
   cmake --build "$build_root/sanitize" -j "$jobs"
   finish "ASan+UBSan build"
