@@ -17,6 +17,7 @@
 #include <sylva/laser_camera.hpp>
 #include <sylva/sim.hpp>
 #include <sylva/sylva.hpp>
+#include <sylva/slam/reach.hpp>
 
 #include "corners.hpp"
 #include "indoor_world.hpp"
@@ -263,14 +264,8 @@ inline VariantResult runVariant(const Simulation& sim, const Options& o, Variant
     std::vector<Vec<2>> z;
     for (const auto& f : features) z.push_back(f.z);
     // Candidates: landmarks predicted within 8.5 m and 100 deg of the heading.
-    const Vec<3> robot = ekf.robotMean();
-    std::vector<Id> candidates;
-    for (const sylva::LandmarkSlot& slot : ekf.slots()) {
-      const Vec<2> dl = ekf.landmarkMean<sylva::Point2>(slot.id) - robot.head<2>();
-      if (dl.norm() > 8.5) continue;
-      if (std::abs(sylva::wrapAngle(std::atan2(dl.y(), dl.x()) - robot[2])) > 100.0 * kRadPerDeg) continue;
-      candidates.push_back(slot.id);
-    }
+    const std::vector<Id> candidates =
+        sylva::slam::landmarksInReach<sylva::Point2>(ekf, model, {8.5, 100.0 * kRadPerDeg});
     const auto pairing = sylva::associateJcbb(ekf, model, z, R_gate, candidates, o.gate_probability);
     std::vector<sylva::Observation<sylva::RangeBearing>> paired;
     std::vector<std::size_t> fresh;

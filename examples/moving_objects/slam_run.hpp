@@ -45,6 +45,7 @@
 #include <sylva/motion/unicycle_2d.hpp>
 #include <sylva/sim/laser_scanner_2d.hpp>
 #include <sylva/sim/loop_trajectory_2d.hpp>
+#include <sylva/slam/reach.hpp>
 
 #include "detector.hpp"
 #include "features.hpp"
@@ -247,16 +248,9 @@ inline SlamResult runSlam(const SlamData& data, const SlamRunOptions& o, bool re
     }
 
     // Association with the map landmarks in reach (range + 1 m, field of view + 10 deg).
-    std::vector<Id> candidates;
-    const Vec<3> robot = ekf.robotMean();
-    for (const sylva::LandmarkSlot& slot : ekf.slots()) {
-      const Vec<2> d = ekf.landmarkMean<sylva::Point2>(slot.id) - robot.head<2>();
-      const double range = d.norm();
-      if (range > g.range_max_m + 1.0 || range < 1e-6) continue;
-      const double bearing = sylva::wrapAngle(std::atan2(d.y(), d.x()) - robot[2]);
-      if (std::abs(bearing) > 0.5 * (g.beams - 1) * g.angle_increment_rad + 10.0 * sylva::kRadPerDeg) continue;
-      candidates.push_back(slot.id);
-    }
+    const std::vector<Id> candidates = sylva::slam::landmarksInReach<sylva::Point2>(
+        ekf, model,
+        {g.range_max_m + 1.0, 0.5 * (g.beams - 1) * g.angle_increment_rad + 10.0 * sylva::kRadPerDeg, 1e-6});
     std::vector<Vec<2>> z;
     for (const PointFeature& f : features) z.push_back(f.z);
     const auto pairing = sylva::associateNearestNeighbor(ekf, model, z, R, candidates, o.gate_probability);

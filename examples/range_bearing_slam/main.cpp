@@ -107,6 +107,7 @@
 #include <sylva/consistency.hpp>
 #include <sylva/sim.hpp>
 #include <sylva/sylva.hpp>
+#include <sylva/slam/reach.hpp>
 
 #include "svg_map.hpp"
 #include "../common/cli_checks.hpp"
@@ -224,18 +225,9 @@ std::vector<Id> candidates(const Filter& ekf, const World& world) {
   constexpr double kRangeMargin_m = 1.0;
   constexpr double kBearingMargin_rad = 10.0 * kRadPerDeg;
   const auto& sensor = world.sensor.options();
-  const Vec<3> robot = ekf.robotMean();
-  std::vector<Id> out;
-  for (const sylva::LandmarkSlot& slot : ekf.slots()) {
-    const Vec<2> l = ekf.landmarkMean<sylva::Point2>(slot.id);
-    const Vec<2> d = l - robot.head<2>();
-    const double range = d.norm();
-    if (range > sensor.max_range_m + kRangeMargin_m || range < 1e-6) continue;
-    const double bearing = sylva::wrapAngle(std::atan2(d.y(), d.x()) - robot[2]);
-    if (std::abs(bearing) > sensor.fov_half_angle_rad + kBearingMargin_rad) continue;
-    out.push_back(slot.id);
-  }
-  return out;
+  const sylva::slam::RangeBearingReach reach{sensor.max_range_m + kRangeMargin_m,
+                                             sensor.fov_half_angle_rad + kBearingMargin_rad, 1e-6};
+  return sylva::slam::landmarksInReach<sylva::Point2>(ekf, sylva::RangeBearing{}, reach);
 }
 
 /// Step 3: one batched update, or one update per reading (each linearized at the estimate

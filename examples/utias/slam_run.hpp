@@ -45,6 +45,7 @@
 #include <sylva/measurements/range_bearing.hpp>
 #include <sylva/motion/unicycle_2d.hpp>
 #include <sylva/motion/unicycle_2d_with_bias.hpp>
+#include <sylva/slam/reach.hpp>
 
 #include "noise_model.hpp"
 
@@ -100,16 +101,8 @@ namespace detail {
 /// Mapped landmarks whose predicted reading is within the configured reach (JCBB candidates).
 template <typename AnyFilter>
 std::vector<Id> candidates(const AnyFilter& ekf, const NoiseConfig& c) {
-  std::vector<Id> out;
-  const Vec<3> x = ekf.robotMean().template head<3>();
-  for (const sylva::LandmarkSlot& s : ekf.slots()) {
-    const Vec<2> d = ekf.template landmarkMean<sylva::Point2>(s.id) - x.head<2>();
-    const double range = d.norm();
-    if (range > c.candidate_range_m || range < 1e-6) continue;
-    if (std::abs(sylva::wrapAngle(std::atan2(d.y(), d.x()) - x[2])) > c.candidate_half_fov_rad) continue;
-    out.push_back(s.id);
-  }
-  return out;
+  return sylva::slam::landmarksInReach<sylva::Point2>(ekf, sylva::RangeBearing{},
+                                                      {c.candidate_range_m, c.candidate_half_fov_rad, 1e-6});
 }
 
 }  // namespace detail

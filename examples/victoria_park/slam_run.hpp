@@ -40,6 +40,7 @@
 #include <sylva/measurements.hpp>
 #include <sylva/motion/ackermann_2d.hpp>
 #include <sylva/motion/ackermann_2d_with_bias.hpp>
+#include <sylva/slam/reach.hpp>
 
 #include "config.hpp"
 #include "gps_error.hpp"
@@ -242,17 +243,8 @@ RunResult runSlamWith(const ds::VictoriaParkData& data, const Config& cfg, const
     out.readings += static_cast<long>(z.size());
 
     // Candidates: landmarks in front of the laser and within range.
-    candidates.clear();
-    const Vec<3> x = ekf.robotMean().template head<3>();
-    const Vec<2> sensor = sylva::RangeBearing(mount).sensorPosition<double>(x);
-    for (const sylva::LandmarkSlot& s : ekf.slots()) {
-      const Vec<2> l = ekf.template landmarkMean<typename V::Landmark>(s.id).template head<2>();
-      const Vec<2> d = l - sensor;
-      if (d.norm() > cfg.max_range_m + 5.0) continue;
-      const double bearing = sylva::wrapAngle(std::atan2(d.y(), d.x()) - x[2]);
-      if (std::abs(bearing) > 100.0 * sylva::kRadPerDeg) continue;
-      candidates.push_back(s.id);
-    }
+    sylva::slam::landmarksInReach<typename V::Landmark>(
+        ekf, sylva::RangeBearing(mount), {cfg.max_range_m + 5.0, 100.0 * sylva::kRadPerDeg}, candidates);
 
     std::vector<std::optional<Id>> pairing(z.size());
     if (!z.empty() && !candidates.empty())
