@@ -137,23 +137,23 @@ template <typename Camera>
 void BasicMonocularTreeSlam<Camera>::setIdealLandmarks(const FrameTruth& truth) {
   for (const auto& slot : ekf_.slots()) {
     const sylva::sim::Tree& tree = (*truth.trees)[static_cast<std::size_t>(slot.id)];
-    if (ekf_.template holds<sylva::Point3>(slot.id)) {
-      ekf_.template setIdealLandmark<sylva::Point3>(slot.id, tree.base);
-    } else if (ekf_.template holds<sylva::TreeXYZR>(slot.id)) {
-      ekf_.template setIdealLandmark<sylva::TreeXYZR>(slot.id, tree.xyzr());
-    } else {
-      // Inverse depth (and IDR) of the base centre from the true camera position at the first
-      // sight: the parametrization's true value.
-      const Vec<3> anchor = true_anchor_.at(slot.id);
-      const Vec<3> d = tree.base - anchor;
-      const double rho = 1.0 / d.norm();
-      Vec<7> l;
-      l << anchor, std::atan2(d.y(), d.x()), std::atan2(d.z(), d.head<2>().norm()), rho, tree.radius_m * rho;
-      if (ekf_.template holds<sylva::InverseDepth>(slot.id))
-        ekf_.template setIdealLandmark<sylva::InverseDepth>(slot.id, l.head<6>());
-      else
-        ekf_.template setIdealLandmark<sylva::InverseDepthRadius>(slot.id, l);
-    }
+    ekf_.visit(slot.id, [&](auto type) {
+      using Landmark = typename decltype(type)::type;
+      if constexpr (std::is_same_v<Landmark, sylva::Point3>) {
+        ekf_.template setIdealLandmark<Landmark>(slot.id, tree.base);
+      } else if constexpr (std::is_same_v<Landmark, sylva::TreeXYZR>) {
+        ekf_.template setIdealLandmark<Landmark>(slot.id, tree.xyzr());
+      } else {
+        // Inverse depth (and IDR) of the base centre from the true camera position at the
+        // first sight: the parametrization's true value.
+        const Vec<3> anchor = true_anchor_.at(slot.id);
+        const Vec<3> d = tree.base - anchor;
+        const double rho = 1.0 / d.norm();
+        Vec<7> l;
+        l << anchor, std::atan2(d.y(), d.x()), std::atan2(d.z(), d.head<2>().norm()), rho, tree.radius_m * rho;
+        ekf_.template setIdealLandmark<Landmark>(slot.id, l.head<Landmark::kDim>());
+      }
+    });
   }
 }
 
@@ -167,13 +167,9 @@ std::array<int, 4> BasicMonocularTreeSlam<Camera>::countByType() const {
 template <typename Camera>
 double BasicMonocularTreeSlam<Camera>::nisOf(const Filter& ekf, const Seen& s) const {
   try {
-    if (ekf.template holds<sylva::InverseDepth>(s.id))
-      return ekf.innovation(id_point_, s.id, s.uv, pixel_noise_).nis();
-    if (ekf.template holds<sylva::Point3>(s.id))
-      return ekf.innovation(xyz_point_, s.id, s.uv, pixel_noise_).nis();
-    if (ekf.template holds<sylva::InverseDepthRadius>(s.id))
-      return ekf.innovation(idr_width_, s.id, s.z, tree_noise_).nis();
-    return ekf.innovation(tree_width_, s.id, s.z, tree_noise_).nis();
+    return withModelOf(ekf, s, [&](const auto& model, const auto& z, const auto& noise) {
+      return ekf.innovation(model, s.id, z, noise).nis();
+    });
   } catch (const sylva::Error&) {
     return kUnpredictable;
   }
@@ -191,14 +187,7 @@ bool BasicMonocularTreeSlam<Camera>::withinGate(const Filter& ekf, Id id, double
 
 template <typename Camera>
 void BasicMonocularTreeSlam<Camera>::fuseOne(Filter& ekf, const Seen& s) const {
-  if (ekf.template holds<sylva::InverseDepth>(s.id))
-    ekf.update(id_point_, s.id, s.uv, pixel_noise_);
-  else if (ekf.template holds<sylva::Point3>(s.id))
-    ekf.update(xyz_point_, s.id, s.uv, pixel_noise_);
-  else if (ekf.template holds<sylva::InverseDepthRadius>(s.id))
-    ekf.update(idr_width_, s.id, s.z, tree_noise_);
-  else
-    ekf.update(tree_width_, s.id, s.z, tree_noise_);
+  withModelOf(ekf, s, [&](const auto& model, const auto& z, const auto& noise) { ekf.update(model, s.id, z, noise); });
 }
 
 template <typename Camera>
@@ -270,16 +259,10 @@ void BasicMonocularTreeSlam<Camera>::fuseBatches(const std::vector<Seen>& observ
   xyz_batch_.clear();
   tree_batch_.clear();
   idr_batch_.clear();
-  for (const Seen& s : observations) {
-    if (ekf_.template holds<sylva::InverseDepth>(s.id))
-      id_batch_.push_back({s.id, s.uv, pixel_noise_});
-    else if (ekf_.template holds<sylva::Point3>(s.id))
-      xyz_batch_.push_back({s.id, s.uv, pixel_noise_});
-    else if (ekf_.template holds<sylva::InverseDepthRadius>(s.id))
-      idr_batch_.push_back({s.id, s.z, tree_noise_});
-    else
-      tree_batch_.push_back({s.id, s.z, tree_noise_});
-  }
+  for (const Seen& s : observations)
+    withModelOf(ekf_, s, [&](const auto& model, const auto& z, const auto& noise) {
+      batchOf(model).push_back({s.id, z, noise});
+    });
   fuse(id_point_, id_batch_, report);
   fuse(xyz_point_, xyz_batch_, report);
   fuse(tree_width_, tree_batch_, report);

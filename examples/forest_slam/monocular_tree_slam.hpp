@@ -47,6 +47,7 @@
 #include <cstddef>
 #include <cmath>
 #include <cstdint>
+#include <type_traits>
 #include <unordered_map>
 #include <vector>
 
@@ -251,6 +252,30 @@ class BasicMonocularTreeSlam {
   bool withinGate(const Filter& ekf, Id id, double nis) const;
   /// Fuses observation `s` alone into `ekf` (throws like Ekf::update).
   void fuseOne(Filter& ekf, const Seen& s) const;
+  /// The model that observes each parametrization, and its batch buffer.
+  const IdPoint& modelFor(sylva::LandmarkTag<sylva::InverseDepth>) const { return id_point_; }
+  const XyzPoint& modelFor(sylva::LandmarkTag<sylva::Point3>) const { return xyz_point_; }
+  const sylva::TreeWidth& modelFor(sylva::LandmarkTag<sylva::TreeXYZR>) const { return tree_width_; }
+  const sylva::InverseDepthTreeWidth& modelFor(sylva::LandmarkTag<sylva::InverseDepthRadius>) const { return idr_width_; }
+  std::vector<sylva::Observation<IdPoint>>& batchOf(const IdPoint&) { return id_batch_; }
+  std::vector<sylva::Observation<XyzPoint>>& batchOf(const XyzPoint&) { return xyz_batch_; }
+  std::vector<sylva::Observation<sylva::TreeWidth>>& batchOf(const sylva::TreeWidth&) { return tree_batch_; }
+  std::vector<sylva::Observation<sylva::InverseDepthTreeWidth>>& batchOf(const sylva::InverseDepthTreeWidth&) {
+    return idr_batch_;
+  }
+  /// Calls f(model, z, noise) with the model of the parametrization of the landmark `s` sees
+  /// (Ekf::visit), its part of the sighting ([u, v] or [u, v, w]) and its noise.
+  template <typename F>
+  decltype(auto) withModelOf(const Filter& ekf, const Seen& s, F&& f) const {
+    return ekf.visit(s.id, [&](auto type) -> decltype(auto) {
+      const auto& model = modelFor(type);
+      if constexpr (std::decay_t<decltype(model)>::kDim == 2) {
+        return f(model, s.uv, pixel_noise_);
+      } else {
+        return f(model, s.z, tree_noise_);
+      }
+    });
+  }
   /// Gates and fuses the observations of mapped trees (step 2 at the top of this file).
   void fuseMapped(FrameReport& report);
   /// Fuses `observations` in one batched update per model.

@@ -3,6 +3,8 @@
 // forms and for two landmark parametrizations side by side.
 
 #include <random>
+#include <string>
+#include <type_traits>
 
 #include <Eigen/Eigenvalues>
 #include <sylva/sylva.hpp>
@@ -262,6 +264,39 @@ TEST_CASE("typed access returns the blocks of the full covariance", "[filter]") 
   CHECK(std::string(ekf.typeName(ekf.slot(8).type_index)) == "InverseDistance2");
   STATIC_REQUIRE(decltype(ekf)::typeIndexOf<InverseDistance2>() == 1);
   STATIC_REQUIRE(decltype(ekf)::kHolds<Point2>);
+}
+
+TEST_CASE("visit hands the callback the landmark's parametrization", "[filter]") {
+  Ekf<Unicycle2D, Point2, InverseDistance2> ekf(Vec<3>(1, 2, 0.5), Mat<3, 3>::Identity() * 0.02);
+  const auto r = Gaussian<2>::sigmas(Vec<2>(0.1, 0.02));
+  ekf.add(7, InverseRangeBearing{}, Vec<2>(5, 0.2), r);
+  ekf.add(8, InverseDistanceFromRangeBearing{}, Vec<2>(6, -0.4), r);
+  // The callback sees the type: it can read the landmark's mean at the right size.
+  const auto dimOf = [&](Id id) {
+    return ekf.visit(id, [&](auto type) {
+      using Landmark = typename decltype(type)::type;
+      return static_cast<int>(ekf.landmarkMean<Landmark>(id).size());
+    });
+  };
+  CHECK(dimOf(7) == 2);
+  CHECK(dimOf(8) == 4);
+  // It follows a reparametrization, and returns references as references.
+  ekf.reparametrize(8, InverseDistanceToPoint{});
+  CHECK(dimOf(8) == 2);
+  const std::string names[] = {"point", "inverse distance"};
+  const std::string& name = ekf.visit(8, [&](auto type) -> const std::string& {
+    return names[std::is_same_v<typename decltype(type)::type, Point2> ? 0 : 1];
+  });
+  CHECK(&name == &names[0]);
+  // An unknown id is refused before the callback runs.
+  bool called = false;
+  try {
+    ekf.visit(9, [&](auto) { called = true; });
+    FAIL("no error for an unknown id");
+  } catch (const Error& e) {
+    CHECK(e.code() == ErrorCode::kUnknownId);
+  }
+  CHECK_FALSE(called);
 }
 
 }  // namespace unity_filter_ekf

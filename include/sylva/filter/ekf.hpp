@@ -36,6 +36,7 @@
 #include <limits>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <type_traits>
 #include <unordered_map>
 #include <vector>
@@ -224,6 +225,13 @@ struct LandmarkSlot {
   int dim;         ///< block size
 };
 
+/// A landmark parametrization as a value: what `visit` hands its callback, so that the callback
+/// can pick a model or a buffer by overloading on it (`using L = typename decltype(tag)::type`).
+template <typename Landmark>
+struct LandmarkTag {
+  using type = Landmark;
+};
+
 template <typename UpdateForm_, typename Robot_, typename... Landmarks_>
 class BasicEkf {
   static_assert(sizeof...(Landmarks_) >= 1, "Ekf needs at least one landmark parametrization");
@@ -388,6 +396,15 @@ class BasicEkf {
   bool holds(Id id) const {
     const auto it = index_.find(id);
     return it != index_.end() && slots_[it->second].type_index == typeIndexOf<Landmark>();
+  }
+
+  /// Calls `f(LandmarkTag<L>{})`, L being the parametrization of landmark `id`, and returns
+  /// what f returns (f must return the same type for every L). One switch over `Landmarks...`
+  /// in place of a chain of `holds<L>(id)` tests, and a new parametrization cannot be
+  /// forgotten: f must accept each. Throws kUnknownId (before f runs) for an id not in the state.
+  template <typename F>
+  decltype(auto) visit(Id id, F&& f) const {
+    return visitType<0>(slots_[slotIndex(id)].type_index, f);
   }
 
   /// The robot's mean (kRobotStateDim entries; on a manifold, a point of it).
@@ -1014,6 +1031,16 @@ class BasicEkf {
       }
       ++i;
     }
+  }
+
+  /// visit: f for the type with index `type_index`, found by a compile-time walk of Landmarks....
+  template <std::size_t I, typename F>
+  static decltype(auto) visitType(int type_index, F& f) {
+    using Landmark = std::tuple_element_t<I, std::tuple<Landmarks_...>>;
+    if constexpr (I + 1 < sizeof...(Landmarks_)) {
+      if (type_index != static_cast<int>(I)) return visitType<I + 1>(type_index, f);
+    }
+    return f(LandmarkTag<Landmark>{});
   }
 
   // ---------------------------------------------------------------- checks
