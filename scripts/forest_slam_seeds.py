@@ -147,7 +147,7 @@ def main():
                              f"{saturated([r['trajectory_error'] for r in wi], 3):.2f} | {sum(r['converged'] for r in wi)}/{n} |")
                 print(f"gains accel {accel} scale {scale}: A_at without {a_t:.3f}", file=sys.stderr)
         lines += ["", f"Lowest A_at without the width sensor: acceleration noise **{best[1]}**, pixel scale **{best[2]}**. "
-                  "forest_slam's defaults (`TreeSlamOptions` in `examples/forest_slam/monocular_tree_slam.hpp`) "
+                  "forest_slam's defaults (`TreeSlamOptions` in `include/sylva/slam/monocular_tree_slam.hpp`) "
                   "should be this setting; if a change of the code moves the optimum, update them.", ""]
 
     results = run_all(exe, seeds, [], args.jobs)

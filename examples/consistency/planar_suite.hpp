@@ -15,6 +15,7 @@
 // predicted state (2 dof), pooled.
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,7 @@
 #include <sylva/motion/unicycle_2d.hpp>
 #include <sylva/sim/planar_loop_world.hpp>
 #include <sylva/sim/random.hpp>
+#include <sylva/slam/front_end.hpp>
 
 namespace consistency {
 
@@ -76,9 +78,12 @@ inline void runPlanar(const PlanarWorld& world,
   Filter ekf(world.sim.trajectory.startPose(), Mat<3, 3>::Zero());
   ekf.setLinearizationPoint(point);
   ekf.reserve(2 * static_cast<int>(world.sim.landmarks.size()));
-  const sylva::RangeBearing model;
-  const sylva::InverseRangeBearing inverse;
-  std::vector<sylva::Observation<sylva::RangeBearing>> paired;
+  sylva::slam::FrontEndOptions options;
+  options.association = sylva::slam::Association::kKnownIds;
+  options.report_nis = true;
+  sylva::slam::FrontEnd<Filter, sylva::RangeBearing, sylva::InverseRangeBearing> front_end(
+      sylva::RangeBearing{}, sylva::InverseRangeBearing{}, options);
+  std::vector<sylva::slam::Reading<2>> told;
   Vec<3> previous_truth = world.sim.trajectory.startPose();
   for (int k = 0; k < world.steps; ++k) {
     const auto& step = truth[static_cast<std::size_t>(k)];
@@ -87,18 +92,15 @@ inline void runPlanar(const PlanarWorld& world,
     if (ideal) ekf.setIdealRobot(step.true_pose);
     previous_truth = step.true_pose;
     const auto readings = world.sim.sensor.observe(step.true_pose, world.sim.landmarks, rng);
-    paired.clear();
-    for (const auto& reading : readings) {
-      if (!ekf.contains(reading.id)) continue;
-      paired.push_back({reading.id, reading.z, world.sensor_noise});
-      out.range_bearing_nis.add(ekf.innovation(model, reading.id, reading.z, world.sensor_noise).nis());
-    }
-    if (!paired.empty()) ekf.update(model, paired);
-    for (const auto& reading : readings) {
-      if (ekf.contains(reading.id)) continue;
-      ekf.add(reading.id, inverse, reading.z, world.sensor_noise);
-      if (ideal)
-        ekf.setIdealLandmark<sylva::Point2>(reading.id, world.sim.landmarks[static_cast<std::size_t>(reading.id)].position);
+    told.clear();
+    for (const auto& reading : readings) told.push_back({reading.z, world.sensor_noise, std::nullopt, reading.id});
+    const sylva::slam::StepReport& report = front_end.update(ekf, told, k * dt);
+    for (std::size_t i = 0; i < readings.size(); ++i) {
+      const sylva::slam::ReadingResult& r = report.readings[i];
+      if (r.outcome == sylva::slam::Outcome::kPaired) out.range_bearing_nis.add(r.nis);
+      if (r.outcome == sylva::slam::Outcome::kAdded && ideal)
+        ekf.setIdealLandmark<sylva::Point2>(
+            readings[i].id, world.sim.landmarks[static_cast<std::size_t>(readings[i].id)].position);
     }
     if (k == 0) continue;
     const Vec<3> e = sylva::Unicycle2D::difference(step.true_pose, ekf.robotMean());

@@ -69,14 +69,18 @@ RunResult runWith(const sylva::sim::ForestScenario& scenario,
   const int last_lap = frames[n_frames - 1].lap;
   const auto start = std::chrono::steady_clock::now();
   const bool needs_truth = options.linearization == sylva::LinearizationPoint::kIdeal || options.unbiased_point_uv;
+  const std::vector<Vec<4>> true_trees = treesOf(scenario.trees);
+  std::vector<Vec<3>> noise_free;
   FrameTruth frame_truth;
-  frame_truth.trees = &scenario.trees;
+  frame_truth.trees = &true_trees;
+  frame_truth.noise_free = &noise_free;
   for (int k = 0; k < n_frames; ++k) {
     const double dt = k == 0 ? 0.0 : frames[k].t_s - frames[k - 1].t_s;
     frame_truth.camera_before = frames[k == 0 ? 0 : k - 1].state;
     frame_truth.camera = frames[k].state;
+    if (options.unbiased_point_uv) noise_free = noiseFreeOf(scenario.observations[k]);
     const FrameReport report =
-        slam.processFrame(dt, scenario.observations[k], needs_truth ? &frame_truth : nullptr);
+        slam.processFrame(dt, sightingsOf(scenario.observations[k]), needs_truth ? &frame_truth : nullptr);
     result.rejected += report.rejected;
     result.hypotheses += report.hypotheses;
     for (std::size_t t = 0; t < 4; ++t) result.nis[t].merge(report.nis[t]);

@@ -1,82 +1,35 @@
 #pragma once
-// MonocularTreeSlam: one frame of monocular EKF-SLAM with tree landmarks, as in the
-// tree-width thesis (Sec. 3.5 and 4.1.3): the camera of `ConstantVelocity3D`, trees first
-// as inverse-depth points, then XYZ, then (with the tree-width sensor) XYZ-R.
-//
-// Three pipelines (`WidthPipeline`) share everything but the use of the width w:
-//   kNone            no width: InverseDepth -> XYZ, (u, v) only;
-//   kAfterXyz        the thesis: InverseDepth -> XYZ -> XYZ-R, w used once a tree is XYZ-R;
-//   kFromFirstSight  beyond the thesis (its Ch. 5): trees start as InverseDepthRadius (IDR),
-//                    fused with [u, v, w] from the first frame (InverseDepthTreeWidth), and
-//                    become XYZ-R by the same linearity rule as inverse depth -> XYZ.
-//
-// Per frame:
-//   1. predict the camera over dt (acceleration noise);
-//   2. fuse the observations of mapped trees, one batched update per model:
-//        InverseDepth  PinholePoint<InverseDepth>   z = [u, v]
-//        Point3        PinholePoint<Point3>         z = [u, v]
-//        TreeXYZR      TreeWidth                    z = [u, v, w]   (with the width sensor)
-//        InverseDepthRadius  InverseDepthTreeWidth    z = [u, v, w]   (kFromFirstSight)
-//      Each observation is gated on its NIS at the predicted state (chi-square gate of
-//      probability `gate_probability`, 0.99999 by default; 0 turns it off). If fewer than half
-//      pass, the prediction is the suspect (a turn the constant-velocity model did not expect):
-//      the best few observations are tried alone on a copy of the filter and the one under
-//      which most others pass is fused first (one-point hypotheses, after Civera et al. 2010).
-//      Refused observations get a second chance against the updated estimate. A batch the
-//      filter refuses as a whole is fused one observation at a time;
-//   3. life cycle (`sylva::TreeLifeCycle`): inverse depth -> XYZ (and IDR -> XYZ-R) by the
-//      linearity index;
-//      with the width sensor, XYZ trees observed in this frame -> XYZ-R once their position
-//      is certain enough, with the radius from this frame's width (`InverseTreeWidth`);
-//   4. trees seen for the first time are added as inverse-depth points
-//      (`InverseDepthInitialization`, Civera et al. 2008), or as IDR trees
-//      (`InverseDepthRadiusInitialization`) with kFromFirstSight.
-//
-// The (u, v) used for points is the centre of the trunk base's image ellipse, as in the
-// thesis (eq. 3.7); it differs slightly from the projection of the base centre, a small
-// model error shared by the runs with and without the width sensor.
-//
-// Used by examples/forest_slam, examples/tree_width_study and bench/forest_slam.cpp. The
-// member functions are compiled once, in monocular_tree_slam.cpp (library
-// forest_slam_pipeline): instantiating this filter with its four models is the slowest part
-// of the project's build.
+// The forest examples' use of sylva::slam::MonocularTreeSlam (include/sylva/slam/
+// monocular_tree_slam.hpp): its names in this namespace, the default forest, and the
+// simulator's sightings and trees in the pipeline's input types. The class is compiled once,
+// in monocular_tree_slam.cpp (library forest_slam_pipeline), for forest_slam,
+// tree_width_study, consistency and bench/forest_slam.cpp.
 
-#include <algorithm>
-#include <array>
-#include <limits>
-#include <cstddef>
-#include <cmath>
 #include <cstdint>
-#include <type_traits>
-#include <unordered_map>
 #include <vector>
 
-#include <sylva/core/error.hpp>
-#include <sylva/consistency/chi_square.hpp>
-#include <sylva/consistency/monte_carlo.hpp>
-#include <sylva/core/types.hpp>
-#include <sylva/filter/ekf.hpp>
-#include <sylva/slam/tree_life_cycle.hpp>
-#include <sylva/landmarks/inverse_depth.hpp>
-#include <sylva/landmarks/inverse_depth_radius.hpp>
-#include <sylva/landmarks/point3.hpp>
-#include <sylva/landmarks/tree_xyzr.hpp>
-#include <sylva/measurements/inverse_depth_initialization.hpp>
-#include <sylva/measurements/inverse_depth_tree_width.hpp>
-#include <sylva/measurements/pinhole_camera.hpp>
-#include <sylva/measurements/pinhole_point.hpp>
-#include <sylva/measurements/tree_width.hpp>
-#include <sylva/motion/constant_velocity_3d.hpp>
-#include <sylva/motion/on_manifold.hpp>
-#include <sylva/noise/gaussian.hpp>
 #include <sylva/sim/tree_forest.hpp>
 #include <sylva/sim/tree_observer.hpp>
+#include <sylva/slam/monocular_tree_slam.hpp>
+
+extern template class sylva::slam::BasicMonocularTreeSlam<sylva::ConstantVelocity3D>;
+extern template class sylva::slam::BasicMonocularTreeSlam<sylva::OnManifold<sylva::ConstantVelocity3D>>;
 
 namespace forest_slam {
 
 using sylva::Id;
 using sylva::Mat;
 using sylva::Vec;
+using sylva::slam::FrameProfile;
+using sylva::slam::FrameReport;
+using sylva::slam::FrameTruth;
+using sylva::slam::initialCameraCovariance;
+using sylva::slam::ManifoldTreeSlam;
+using sylva::slam::MonocularTreeSlam;
+using sylva::slam::pipelineName;
+using sylva::slam::TreeSlamOptions;
+using sylva::slam::TrunkSighting;
+using sylva::slam::WidthPipeline;
 
 /// The default forest. Seed 26 is the representative one of seeds 1..30 under the default
 /// settings: the median of the trajectory error of the run WITHOUT the width sensor, so the
@@ -84,240 +37,29 @@ using sylva::Vec;
 /// docs/forest-slam-results.md lists all 30 seeds).
 constexpr std::uint64_t kDefaultForestSeed = 26;
 
-/// The camera's prior: the first true camera state defines the map frame (pose known
-/// exactly), its velocity is known to 0.1 m/s and its angular velocity to 0.05 rad/s.
-inline Mat<13, 13> initialCameraCovariance() {
-  Mat<13, 13> P0 = Mat<13, 13>::Zero();
-  P0.diagonal().segment<7>(0).setConstant(1e-8);
-  P0.diagonal().segment<3>(7).setConstant(0.1 * 0.1);
-  P0.diagonal().segment<3>(10).setConstant(0.05 * 0.05);
-  return P0;
+/// The simulator's observations of one frame as the pipeline's sightings (id and noisy
+/// [u, v, w]).
+inline std::vector<TrunkSighting> sightingsOf(const std::vector<sylva::sim::TreeObservation>& observations) {
+  std::vector<TrunkSighting> out;
+  out.reserve(observations.size());
+  for (const auto& o : observations) out.push_back(TrunkSighting{o.id, o.z});
+  return out;
 }
 
-/// How the tree-width measurement w is used (see the top of this file).
-enum class WidthPipeline { kNone, kAfterXyz, kFromFirstSight };
-
-/// "none", "after_xyz", "first_sight".
-inline const char* pipelineName(WidthPipeline p) {
-  switch (p) {
-    case WidthPipeline::kNone: return "none";
-    case WidthPipeline::kAfterXyz: return "after_xyz";
-    case WidthPipeline::kFromFirstSight: return "first_sight";
-  }
-  return "?";
+/// The noise-free [u, v, w] of each observation (FrameTruth::noise_free).
+inline std::vector<Vec<3>> noiseFreeOf(const std::vector<sylva::sim::TreeObservation>& observations) {
+  std::vector<Vec<3>> out;
+  out.reserve(observations.size());
+  for (const auto& o : observations) out.push_back(o.z_true);
+  return out;
 }
 
-/// The filter's settings. The noise defaults are the "gains" (thesis Sec. 4.2) selected for
-/// the default forest with 1 px simulated noise: see docs/forest-slam-results.md for how.
-struct TreeSlamOptions {
-  sylva::PinholeCamera camera{500.0, 500.0, 320.0, 240.0, 640, 480};
-  WidthPipeline pipeline = WidthPipeline::kAfterXyz;  ///< how the width w is used
-  double pixel_sigma_px = 1.5;      ///< filter's measurement noise on u, v
-  double width_sigma_px = 1.0;      ///< filter's measurement noise on w
-  double linear_accel_sigma = 0.3;  ///< m/s^2, ConstantVelocity3D's noise
-  double angular_accel_sigma = 0.3; ///< rad/s^2
-  /// The frame of ConstantVelocity3D's linear velocity.
-  sylva::ConstantVelocity3D::VelocityFrame velocity_frame = sylva::ConstantVelocity3D::VelocityFrame::kWorld;
-  double initial_inverse_depth = 0.1;  ///< 1/m, Civera et al. 2008
-  double inverse_depth_sigma = 0.5;    ///< 1/m
-  double linearity_threshold = 0.1;    ///< inverse depth -> XYZ, IDR -> XYZ-R (Civera et al. 2007)
-  double tree_position_sigma_m = 0.3;  ///< XYZ -> XYZ-R once the position's largest sigma is below
-  double gate_probability = 0.99999;   ///< chi-square gate on each observation's NIS (0: off)
-  /// The life cycle's rules judge a landmark's uncertainty given the camera's state
-  /// (sylva::landmarkCovarianceGivenRobot) instead of its marginal: a consistent filter keeps
-  /// the map's position and scale uncertain, which the marginal includes.
-  bool conversion_given_camera = false;
-  /// The camera's state on its manifold (sylva::OnManifold<ConstantVelocity3D>: covariance on
-  /// the 12-dimensional tangent, updates composed through plus) instead of its quaternion's
-  /// four entries. runForestSlam picks ManifoldTreeSlam for it.
-  bool camera_on_manifold = false;
-  /// The left inverse of the observability-constrained update (sylva::GaugeInverse).
-  sylva::GaugeInverse gauge_inverse = sylva::GaugeInverse::kRobot;
-  /// Where the filter takes its Jacobians. kIdeal (a diagnostic) needs the truth of every frame
-  /// (`FrameTruth`).
-  sylva::LinearizationPoint linearization = sylva::LinearizationPoint::kCurrentEstimate;
-  /// A diagnostic: the (u, v) fused by the point models is the projection of the true base
-  /// centre plus the frame's noise, instead of the centre of the base ellipse (which the
-  /// point models do not predict: their model error). Needs `FrameTruth`.
-  bool unbiased_point_uv = false;
-};
-
-/// What the simulator knows about one frame, for the diagnostics of `TreeSlamOptions`
-/// (ideal linearization, bias-free point measurements). The filter never sees it otherwise.
-struct FrameTruth {
-  Vec<13> camera_before;                         ///< true camera state at the previous frame
-  Vec<13> camera;                                ///< true camera state at this frame
-  const std::vector<sylva::sim::Tree>* trees = nullptr;  ///< the forest, trees[id].id == id
-};
-
-/// What one frame did.
-struct FrameReport {
-  int fused = 0;      ///< observations fused
-  int added = 0;      ///< new inverse-depth landmarks
-  int to_xyz = 0;     ///< inverse depth -> XYZ conversions
-  int to_tree = 0;    ///< XYZ -> XYZ-R or IDR -> XYZ-R conversions
-  int rejected = 0;   ///< observations or conversions refused by the filter, a model or the gate
-  int hypotheses = 0; ///< 1 when the frame was re-anchored on a one-point hypothesis
-  /// NIS of the observations of mapped trees at the predicted state (before any is fused), by
-  /// the landmark's parametrization [inverse depth, XYZ, XYZ-R, IDR] (2 dof for the point
-  /// models, 3 for the width models; unpredictable observations left out).
-  std::array<sylva::NisTally, 4> nis = emptyNisTallies();
-
-  static std::array<sylva::NisTally, 4> emptyNisTallies() {
-    return {sylva::NisTally(2), sylva::NisTally(2), sylva::NisTally(3), sylva::NisTally(3)};
-  }
-};
-
-/// Where the frames' time went, when profiling is on (`MonocularTreeSlam::setProfile`):
-/// seconds per phase, summed over the frames processed since.
-struct FrameProfile {
-  double predict_s = 0.0;        ///< camera prediction
-  double gating_s = 0.0;         ///< NIS of every observation and the one-point hypotheses
-                                 ///< (with the filter copies they need)
-  double point_updates_s = 0.0;  ///< PinholePoint updates of inverse-depth and XYZ trees
-  double width_updates_s = 0.0;  ///< TreeWidth and InverseDepthTreeWidth updates
-  double reparametrize_s = 0.0;  ///< life cycle: inverse depth -> XYZ, XYZ (or IDR) -> XYZ-R
-  double add_s = 0.0;            ///< trees seen for the first time
-  int frames = 0;
-  double total_s() const {
-    return predict_s + gating_s + point_updates_s + width_updates_s + reparametrize_s + add_s;
-  }
-};
-
-/// `Camera` is the filter's robot: ConstantVelocity3D (its quaternion's 4 entries in the
-/// covariance, renormalized after each update) or OnManifold<ConstantVelocity3D> (the
-/// covariance on the 12-dimensional tangent, the update composed through plus). The two
-/// instantiations are compiled once, in monocular_tree_slam.cpp.
-template <typename Camera>
-class BasicMonocularTreeSlam {
- public:
-  using Filter = sylva::Ekf<Camera, sylva::InverseDepth, sylva::Point3, sylva::TreeXYZR,
-                            sylva::InverseDepthRadius>;
-  using IdPoint = sylva::PinholePoint<sylva::InverseDepth>;
-  using XyzPoint = sylva::PinholePoint<sylva::Point3>;
-
-  /// Starts at the camera state `x0` (velocity in the world frame, as the simulator gives it)
-  /// with covariance `P0` of its 13 entries (carried to the tangent for a camera on its
-  /// manifold).
-  BasicMonocularTreeSlam(const TreeSlamOptions& options, const Vec<13>& x0, const Mat<13, 13>& P0);
-
-  const Filter& filter() const { return ekf_; }
-  const TreeSlamOptions& options() const { return options_; }
-
-  /// One frame: predict over `dt` seconds, then the trees seen ([u, v, w] pixels each).
-  /// `truth` is needed by the diagnostic options only (kInvalidArgument without it).
-  FrameReport processFrame(double dt,
-                           const std::vector<sylva::sim::TreeObservation>& observations,
-                           const FrameTruth* truth = nullptr);
-
-  /// Number of landmarks per parametrization: [inverse depth, XYZ, XYZ-R, IDR].
-  std::array<int, 4> countByType() const;
-
-  /// Adds the time of every following frame's phases to `*profile` (nullptr: off, the
-  /// default). The profile is the caller's; a copy of this object shares it.
-  void setProfile(FrameProfile* profile) { profile_ = profile; }
-
- private:
-  struct Seen {
-    Id id;
-    Vec<3> z;   ///< [u, v, w] for the width models
-    Vec<2> uv;  ///< [u, v] for the point models (z's unless `unbiased_point_uv`)
-  };
-  struct Candidate {
-    Seen seen;
-    double nis;
-  };
-
-  static constexpr double kUnpredictable = std::numeric_limits<double>::infinity();
-
-  /// P0 of the camera's 13 entries as the filter's: carried to the tangent at x0 on a manifold.
-  static typename Filter::RobotCovariance priorCovariance(const Vec<13>& x0, const Mat<13, 13>& P0) {
-    if constexpr (Filter::kRobotOnManifold) {
-      const Mat<12, 13> M = Camera::minusJacobian(x0);
-      return M * P0 * M.transpose();
-    } else {
-      (void)x0;
-      return P0;
-    }
-  }
-  static constexpr int kMaxHypotheses = 5;
-
-  /// NIS of observation `s` against `ekf`'s current estimate through the model of the
-  /// landmark's parametrization (XYZ-R trees only with the width sensor); +inf when the model
-  /// cannot predict it (e.g. behind the estimated camera).
-  double nisOf(const Filter& ekf, const Seen& s) const;
-  /// True when the observation passes the chi-square gate (always, for a predictable one,
-  /// with the gate off).
-  bool passes(const Filter& ekf, const Seen& s) const;
-  bool withinGate(const Filter& ekf, Id id, double nis) const;
-  /// Fuses observation `s` alone into `ekf` (throws like Ekf::update).
-  void fuseOne(Filter& ekf, const Seen& s) const;
-  /// The model that observes each parametrization, and its batch buffer.
-  const IdPoint& modelFor(sylva::LandmarkTag<sylva::InverseDepth>) const { return id_point_; }
-  const XyzPoint& modelFor(sylva::LandmarkTag<sylva::Point3>) const { return xyz_point_; }
-  const sylva::TreeWidth& modelFor(sylva::LandmarkTag<sylva::TreeXYZR>) const { return tree_width_; }
-  const sylva::InverseDepthTreeWidth& modelFor(sylva::LandmarkTag<sylva::InverseDepthRadius>) const { return idr_width_; }
-  std::vector<sylva::Observation<IdPoint>>& batchOf(const IdPoint&) { return id_batch_; }
-  std::vector<sylva::Observation<XyzPoint>>& batchOf(const XyzPoint&) { return xyz_batch_; }
-  std::vector<sylva::Observation<sylva::TreeWidth>>& batchOf(const sylva::TreeWidth&) { return tree_batch_; }
-  std::vector<sylva::Observation<sylva::InverseDepthTreeWidth>>& batchOf(const sylva::InverseDepthTreeWidth&) {
-    return idr_batch_;
-  }
-  /// Calls f(model, z, noise) with the model of the parametrization of the landmark `s` sees
-  /// (Ekf::visit), its part of the sighting ([u, v] or [u, v, w]) and its noise.
-  template <typename F>
-  decltype(auto) withModelOf(const Filter& ekf, const Seen& s, F&& f) const {
-    return ekf.visit(s.id, [&](auto type) -> decltype(auto) {
-      const auto& model = modelFor(type);
-      if constexpr (std::decay_t<decltype(model)>::kDim == 2) {
-        return f(model, s.uv, pixel_noise_);
-      } else {
-        return f(model, s.z, tree_noise_);
-      }
-    });
-  }
-  /// Gates and fuses the observations of mapped trees (step 2 at the top of this file).
-  void fuseMapped(FrameReport& report);
-  /// Fuses `observations` in one batched update per model.
-  void fuseBatches(const std::vector<Seen>& observations, FrameReport& report);
-  /// One batched update through `model`; one observation at a time if the batch is refused.
-  template <typename Model>
-  void fuse(const Model& model, const std::vector<sylva::Observation<Model>>& batch, FrameReport& report);
-
-  /// Hands the true state of every landmark, in its parametrization, to the filter
-  /// (LinearizationPoint::kIdeal).
-  void setIdealLandmarks(const FrameTruth& truth);
-
-  TreeSlamOptions options_;
-  /// The true camera position when each tree was first seen: the true anchor of its inverse
-  /// depth (kIdeal only).
-  std::unordered_map<Id, Vec<3>> true_anchor_;
-  Filter ekf_;
-  IdPoint id_point_;
-  XyzPoint xyz_point_;
-  sylva::TreeWidth tree_width_;
-  sylva::InverseDepthTreeWidth idr_width_;
-  sylva::InverseDepthInitialization init_;
-  sylva::InverseDepthRadiusInitialization idr_init_;
-  sylva::TreeLifeCycle<> life_;
-  sylva::Gaussian<6> accel_noise_;
-  sylva::Gaussian<2> pixel_noise_;
-  sylva::Gaussian<3> tree_noise_;
-  std::vector<sylva::Observation<IdPoint>> id_batch_;
-  std::vector<sylva::Observation<XyzPoint>> xyz_batch_;
-  std::vector<sylva::Observation<sylva::TreeWidth>> tree_batch_;
-  std::vector<sylva::Observation<sylva::InverseDepthTreeWidth>> idr_batch_;
-  std::array<double, 4> gate_;  ///< chi-square gate by measurement dimension (2 and 3 used)
-  std::vector<Seen> fresh_, mapped_, accepted_, refused_, second_chance_;
-  std::vector<Candidate> candidates_;
-  FrameProfile* profile_ = nullptr;
-};
-
-/// The pipeline with the camera's quaternion in the state (the thesis's filter).
-using MonocularTreeSlam = BasicMonocularTreeSlam<sylva::ConstantVelocity3D>;
-/// The pipeline with the camera on its manifold (TreeSlamOptions::camera_on_manifold).
-using ManifoldTreeSlam = BasicMonocularTreeSlam<sylva::OnManifold<sylva::ConstantVelocity3D>>;
-extern template class BasicMonocularTreeSlam<sylva::ConstantVelocity3D>;
-extern template class BasicMonocularTreeSlam<sylva::OnManifold<sylva::ConstantVelocity3D>>;
+/// The forest as FrameTruth::trees: [x, y, z, r] at index id (the simulator's trees[id].id == id).
+inline std::vector<Vec<4>> treesOf(const std::vector<sylva::sim::Tree>& trees) {
+  std::vector<Vec<4>> out;
+  out.reserve(trees.size());
+  for (const auto& t : trees) out.push_back(t.xyzr());
+  return out;
+}
 
 }  // namespace forest_slam

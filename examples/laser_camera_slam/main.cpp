@@ -16,7 +16,8 @@
 // program calibrates away from 40 simulated 'v'-target pairs (Sec. 3.3.2) unless
 // --no-calibration. Odometry noise 5 cm/s and 1 deg/s.
 //
-// Filter: sylva::Ekf<Unicycle2D, Point2> with RangeBearing / InverseRangeBearing, JCBB
+// Filter: sylva::Ekf<Unicycle2D, Point2> with RangeBearing / InverseRangeBearing, stepped by
+// sylva::slam::FrontEnd: JCBB
 // association (gate 0.99 with Table 3.1's 5 cm / 1 deg), each feature fused with its own
 // covariance; an unpaired feature becomes a landmark when its NIS to every candidate exceeds
 // chi2(2, 0.999999).

@@ -12,11 +12,11 @@
 #include <unordered_map>
 #include <vector>
 
-#include <sylva/association.hpp>
 #include <sylva/consistency.hpp>
 #include <sylva/laser_camera.hpp>
 #include <sylva/sim.hpp>
 #include <sylva/sylva.hpp>
+#include <sylva/slam/front_end.hpp>
 #include <sylva/slam/reach.hpp>
 
 #include "corners.hpp"
@@ -237,13 +237,19 @@ inline std::vector<PointFeature> featuresOf(const StepData& d, Variant v) {
 }
 
 inline VariantResult runVariant(const Simulation& sim, const Options& o, Variant variant) {
-  const sylva::RangeBearing model;
-  const sylva::InverseRangeBearing inverse;
   const auto Q = Gaussian<2>::sigmas(Vec<2>(o.sigma_v_mps, o.sigma_omega_degps * kRadPerDeg));
   // JCBB gates with one noise for every measurement: Table 3.1's 5 cm and 1 deg, wider
   // than every feature's own covariance, which the update uses.
   const auto R_gate = Gaussian<2>::sigmas(Vec<2>(0.05, 1.0 * kRadPerDeg));
-  const double new_gate = sylva::chiSquareGate(2, o.new_landmark_probability);
+  // Candidates: landmarks predicted within 8.5 m and 100 deg of the heading.
+  sylva::slam::FrontEndOptions options;
+  options.association = sylva::slam::Association::kJcbb;
+  options.gate_probability = o.gate_probability;
+  options.new_landmark_probability = o.new_landmark_probability;
+  sylva::slam::FrontEnd<Filter, sylva::RangeBearing, sylva::InverseRangeBearing> front_end(
+      sylva::RangeBearing{}, sylva::InverseRangeBearing{}, options,
+      sylva::slam::candidatesInReach<sylva::Point2>(sylva::RangeBearing{}, {8.5, 100.0 * kRadPerDeg}));
+  std::vector<sylva::slam::Reading<2>> readings;
   const auto [nees_lo, nees_hi] = sylva::averageChiSquareBounds(3, 1, 0.95);
 
   VariantResult result;
@@ -253,7 +259,6 @@ inline VariantResult runVariant(const Simulation& sim, const Options& o, Variant
   std::unordered_map<Id, Id> truth_of;
   std::unordered_map<Id, Vec<2>> true_position;
   for (const auto& e : sim.world.edges) true_position[e.id] = e.position;
-  Id next_id = 0;
   double nees_sum = 0.0;
   int nees_count = 0, inside = 0;
   result.path.push_back(Vec<2>::Zero());
@@ -261,33 +266,20 @@ inline VariantResult runVariant(const Simulation& sim, const Options& o, Variant
     const StepData& d = sim.steps[k];
     ekf.predict(d.odometry, sim.dt_s, Q);
     const std::vector<PointFeature> features = featuresOf(d, variant);
-    std::vector<Vec<2>> z;
-    for (const auto& f : features) z.push_back(f.z);
-    // Candidates: landmarks predicted within 8.5 m and 100 deg of the heading.
-    const std::vector<Id> candidates =
-        sylva::slam::landmarksInReach<sylva::Point2>(ekf, model, {8.5, 100.0 * kRadPerDeg});
-    const auto pairing = sylva::associateJcbb(ekf, model, z, R_gate, candidates, o.gate_probability);
-    std::vector<sylva::Observation<sylva::RangeBearing>> paired;
-    std::vector<std::size_t> fresh;
+    readings.clear();
+    for (const auto& f : features) readings.push_back({f.z, Gaussian<2>::covariance(f.covariance), R_gate});
+    const sylva::slam::StepReport& report = front_end.update(ekf, readings, sim.dt_s * static_cast<double>(k + 1));
     for (std::size_t i = 0; i < features.size(); ++i) {
-      const auto R = Gaussian<2>::covariance(features[i].covariance);
-      if (pairing[i]) {
+      const sylva::slam::ReadingResult& r = report.readings[i];
+      if (r.outcome == sylva::slam::Outcome::kPaired) {
         ++result.paired;
-        if (truth_of.at(*pairing[i]) != features[i].true_edge) ++result.wrong;
-        paired.push_back({*pairing[i], features[i].z, R});
-        continue;
-      }
-      if (sylva::smallestNis(ekf, model, z[i], R_gate, candidates) > new_gate)
-        fresh.push_back(i);
-      else
+        if (truth_of.at(*r.landmark) != features[i].true_edge) ++result.wrong;
+      } else if (r.outcome == sylva::slam::Outcome::kAdded) {
+        truth_of[*r.landmark] = features[i].true_edge;
+        ++result.added;
+      } else if (r.outcome == sylva::slam::Outcome::kAmbiguous) {
         ++result.ambiguous;
-    }
-    if (!paired.empty()) ekf.update(model, paired);
-    for (const std::size_t i : fresh) {
-      const Id id = next_id++;
-      ekf.add(id, inverse, features[i].z, Gaussian<2>::covariance(features[i].covariance));
-      truth_of[id] = features[i].true_edge;
-      ++result.added;
+      }
     }
     StepRecord rec;
     rec.error = sylva::Unicycle2D::difference(d.true_pose, ekf.robotMean());

@@ -15,7 +15,7 @@
 //      (a leg at rest between two swings does not move and is not detected; its other leg,
 //      swinging beside it a moment earlier, was); `oracle` (a diagnostic) drops exactly the
 //      features the simulator says are legs, the best any removal could do;
-//   5. individual-compatibility nearest neighbour (chi-square gate) pairs features with the
+//   5. sylva::slam::FrontEnd: individual-compatibility nearest neighbour (chi-square gate) pairs features with the
 //      map; paired features are fused in one batched update; a feature whose NIS to every
 //      candidate exceeds a wider gate becomes a new landmark (InverseRangeBearing); the rest
 //      are dropped as ambiguous.
@@ -34,9 +34,6 @@
 #include <unordered_map>
 #include <vector>
 
-#include <sylva/association/nearest_neighbor.hpp>
-#include <sylva/association/smallest_nis.hpp>
-#include <sylva/consistency/chi_square.hpp>
 #include <sylva/consistency/monte_carlo.hpp>
 #include <sylva/consistency/nees.hpp>
 #include <sylva/filter/ekf.hpp>
@@ -45,6 +42,7 @@
 #include <sylva/motion/unicycle_2d.hpp>
 #include <sylva/sim/laser_scanner_2d.hpp>
 #include <sylva/sim/loop_trajectory_2d.hpp>
+#include <sylva/slam/front_end.hpp>
 #include <sylva/slam/reach.hpp>
 
 #include "detector.hpp"
@@ -151,13 +149,26 @@ inline SlamResult runSlam(const SlamData& data, const SlamRunOptions& o, bool re
   const auto& topt = data.scene.trajectory.options();
   const auto Q = Gaussian<2>::sigmas(Vec<2>(topt.sigma_v_mps, topt.sigma_omega_radps));
   const double dt = data.scene.trajectory.dt();
-  const sylva::RangeBearing model;
-  const sylva::InverseRangeBearing inverse;
-  const double new_gate = sylva::chiSquareGate(2, o.new_landmark_probability);
-
   SlamFilter ekf(data.scene.trajectory.startPose(), sylva::Mat<3, 3>::Zero());
+  // Association with the map landmarks in reach (range + 1 m, field of view + 10 deg), by
+  // nearest neighbour; a feature that pairs with nothing and is far from every candidate
+  // starts a landmark at once.
+  sylva::slam::FrontEndOptions front_end_options;
+  front_end_options.association = sylva::slam::Association::kNearestNeighbor;
+  front_end_options.gate_probability = o.gate_probability;
+  front_end_options.new_landmark_probability = o.new_landmark_probability;
+  const sylva::slam::RangeBearingReach reach{
+      g.range_max_m + 1.0, 0.5 * (g.beams - 1) * g.angle_increment_rad + 10.0 * sylva::kRadPerDeg, 1e-6};
+  sylva::slam::FrontEnd<SlamFilter, sylva::RangeBearing, sylva::InverseRangeBearing> front_end(
+      sylva::RangeBearing{}, sylva::InverseRangeBearing{}, front_end_options,
+      sylva::slam::candidatesInReach<sylva::Point2>(sylva::RangeBearing{}, reach));
+  std::vector<sylva::slam::Reading<2>> readings;
+  const auto slamStep = [&](const std::vector<PointFeature>& features, double time_s) -> const sylva::slam::StepReport& {
+    readings.clear();
+    for (const PointFeature& f : features) readings.push_back({f.z, R});
+    return front_end.update(ekf, readings, time_s);
+  };
   std::unordered_map<Id, Id> true_id_of;
-  Id next_id = 0;
   SlamResult result;
   struct Remembered {
     Vec<2> position;
@@ -166,13 +177,13 @@ inline SlamResult runSlam(const SlamData& data, const SlamRunOptions& o, bool re
   std::vector<Remembered> memory;
 
   AlignedScan previous = alignScan(g, data.scans[0].ranges_m, ekf.robotMean());
-  const auto addLandmark = [&](const PointFeature& f, Id truth) {
-    const Id id = next_id++;
-    ekf.add(id, inverse, f.z, R);
-    true_id_of[id] = truth;
-  };
-  for (const PointFeature& f : extractPointFeatures(g, previous, o.features))
-    addLandmark(f, majorityObject(data.scans[0], f.beams));
+  {  // The first scan maps every feature.
+    const std::vector<PointFeature> features = extractPointFeatures(g, previous, o.features);
+    const sylva::slam::StepReport& report = slamStep(features, data.scans[0].time_s);
+    for (std::size_t i = 0; i < features.size(); ++i)
+      if (report.readings[i].outcome == sylva::slam::Outcome::kAdded)
+        true_id_of[*report.readings[i].landmark] = majorityObject(data.scans[0], features[i].beams);
+  }
   result.estimated_path.push_back(ekf.robotMean().head<2>());
 
   double squared_position_error = 0.0;
@@ -247,32 +258,18 @@ inline SlamResult runSlam(const SlamData& data, const SlamRunOptions& o, bool re
       motion_class = std::move(kept_class);
     }
 
-    // Association with the map landmarks in reach (range + 1 m, field of view + 10 deg).
-    const std::vector<Id> candidates = sylva::slam::landmarksInReach<sylva::Point2>(
-        ekf, model,
-        {g.range_max_m + 1.0, 0.5 * (g.beams - 1) * g.angle_increment_rad + 10.0 * sylva::kRadPerDeg, 1e-6});
-    std::vector<Vec<2>> z;
-    for (const PointFeature& f : features) z.push_back(f.z);
-    const auto pairing = sylva::associateNearestNeighbor(ekf, model, z, R, candidates, o.gate_probability);
-    std::vector<sylva::Observation<sylva::RangeBearing>> paired;
-    std::vector<std::size_t> to_add;
+    const sylva::slam::StepReport& report = slamStep(features, scan.time_s);
     for (std::size_t i = 0; i < features.size(); ++i) {
-      if (pairing[i]) {
-        paired.push_back({*pairing[i], z[i], R});
-        if (isLegId(feature_truth[i])) {
-          ++result.leg_observations_used;
-          ++result.leg_fused_by_motion[static_cast<std::size_t>(motion_class[i])];
-          const Id landmark_truth = true_id_of.at(*pairing[i]);
-          if (landmark_truth >= kFirstPoleId && landmark_truth < kFirstLegId) ++result.leg_into_pole;
-        }
-        continue;
+      const sylva::slam::ReadingResult& r = report.readings[i];
+      if (r.outcome == sylva::slam::Outcome::kAdded) {
+        true_id_of[*r.landmark] = feature_truth[i];
+        if (isLegId(feature_truth[i])) ++result.leg_observations_used;
+      } else if (r.outcome == sylva::slam::Outcome::kPaired && isLegId(feature_truth[i])) {
+        ++result.leg_observations_used;
+        ++result.leg_fused_by_motion[static_cast<std::size_t>(motion_class[i])];
+        const Id landmark_truth = true_id_of.at(*r.landmark);
+        if (landmark_truth >= kFirstPoleId && landmark_truth < kFirstLegId) ++result.leg_into_pole;
       }
-      if (sylva::smallestNis(ekf, model, z[i], R, candidates) > new_gate) to_add.push_back(i);
-    }
-    if (!paired.empty()) ekf.update(model, paired);
-    for (const std::size_t i : to_add) {
-      addLandmark(features[i], feature_truth[i]);
-      if (isLegId(feature_truth[i])) ++result.leg_observations_used;
     }
 
     const Vec<3> estimate = ekf.robotMean();

@@ -103,10 +103,10 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
-#include <sylva/association.hpp>
 #include <sylva/consistency.hpp>
 #include <sylva/sim.hpp>
 #include <sylva/sylva.hpp>
+#include <sylva/slam/front_end.hpp>
 #include <sylva/slam/reach.hpp>
 
 #include "svg_map.hpp"
@@ -219,96 +219,55 @@ World makeWorld(const Options& o) {
                o.update == "batched"};
 }
 
-/// Map landmarks whose predicted reading lies within the sensor's reach (with a margin for
-/// the uncertainty): the candidates offered to nn and jcbb.
-std::vector<Id> candidates(const Filter& ekf, const World& world) {
+using FrontEnd = sylva::slam::FrontEnd<Filter, sylva::RangeBearing, sylva::InverseRangeBearing>;
+
+/// Steps 2-4 of the algorithm (see the file comment): sylva::slam::FrontEnd. Candidates of nn
+/// and jcbb are the map landmarks whose predicted reading lies within the sensor's reach,
+/// with a margin for the uncertainty.
+FrontEnd makeFrontEnd(const World& world, const Options& o) {
+  namespace slam = sylva::slam;
+  slam::FrontEndOptions options;
+  options.association = world.association == Association::kKnown ? slam::Association::kKnownIds
+                        : world.association == Association::kJcbb ? slam::Association::kJcbb
+                                                                  : slam::Association::kNearestNeighbor;
+  options.gate_probability = o.gate_probability;
+  options.new_landmark_probability = o.new_landmark_probability;
+  options.fusion = world.batched ? sylva::Fusion::kBatched : sylva::Fusion::kSequential;
   constexpr double kRangeMargin_m = 1.0;
   constexpr double kBearingMargin_rad = 10.0 * kRadPerDeg;
   const auto& sensor = world.sensor.options();
-  const sylva::slam::RangeBearingReach reach{sensor.max_range_m + kRangeMargin_m,
-                                             sensor.fov_half_angle_rad + kBearingMargin_rad, 1e-6};
-  return sylva::slam::landmarksInReach<sylva::Point2>(ekf, sylva::RangeBearing{}, reach);
+  const slam::RangeBearingReach reach{sensor.max_range_m + kRangeMargin_m,
+                                      sensor.fov_half_angle_rad + kBearingMargin_rad, 1e-6};
+  return FrontEnd(sylva::RangeBearing{}, sylva::InverseRangeBearing{}, options,
+                  slam::candidatesInReach<sylva::Point2>(sylva::RangeBearing{}, reach));
 }
 
-/// Step 3: one batched update, or one update per reading (each linearized at the estimate
-/// the previous one left).
-void fuse(Filter& ekf,
-          const World& world,
-          const std::vector<sylva::Observation<sylva::RangeBearing>>& paired) {
-  if (paired.empty()) return;
-  if (world.batched) {
-    ekf.update(sylva::RangeBearing{}, paired);
-  } else {
-    for (const auto& obs : paired) ekf.update(sylva::RangeBearing{}, obs.id, obs.z, obs.noise);
-  }
-}
-
-/// Steps 2-4 of the algorithm (see the file comment) for one scan.
-void associateAndFuse(Filter& ekf,
-                      const World& world,
-                      const Options& o,
-                      const std::vector<sylva::sim::RangeBearingReading>& readings,
-                      std::unordered_map<Id, Id>& true_id_of,
-                      Id& next_id,
-                      AssociationStats& stats) {
-  const sylva::RangeBearing model;
-  const sylva::InverseRangeBearing inverse;
-  const Gaussian<2>& R = world.sensor_noise_told;
-  std::vector<sylva::Observation<sylva::RangeBearing>> paired;
-  std::vector<const sylva::sim::RangeBearingReading*> fresh;
-
-  if (world.association == Association::kKnown) {
-    for (const auto& reading : readings) {
-      if (ekf.contains(reading.id))
-        paired.push_back({reading.id, reading.z, R});
-      else
-        fresh.push_back(&reading);
-    }
-    fuse(ekf, world, paired);
-    for (const auto* reading : fresh) {
-      ekf.add(reading->id, inverse, reading->z, R);
-      true_id_of[reading->id] = reading->id;
-    }
-    return;
-  }
-
-  std::vector<Vec<2>> z;
-  z.reserve(readings.size());
-  for (const auto& reading : readings) z.push_back(reading.z);
-  const std::vector<Id> cands = candidates(ekf, world);
-  const std::vector<std::optional<Id>> pairing =
-      world.association == Association::kJcbb
-          ? sylva::associateJcbb(ekf, model, z, R, cands, o.gate_probability)
-          : sylva::associateNearestNeighbor(ekf, model, z, R, cands, o.gate_probability);
-
-  // True landmarks already in the map, to count duplicates (evaluation only).
-  std::unordered_map<Id, int> mapped_true;
-  for (const auto& entry : true_id_of) ++mapped_true[entry.second];
-
-  const double new_gate = sylva::chiSquareGate(2, o.new_landmark_probability);
-  std::vector<std::size_t> to_add;
+/// Scores one step against the simulator's ids (evaluation only): which true landmark each
+/// new landmark stands for, and with nn and jcbb the counters of AssociationStats.
+void score(const sylva::slam::StepReport& report,
+           const std::vector<sylva::sim::RangeBearingReading>& readings,
+           bool known,
+           std::unordered_map<Id, Id>& true_id_of,
+           AssociationStats& stats) {
+  using sylva::slam::Outcome;
+  std::unordered_map<Id, int> mapped_true;  // true landmarks mapped before this step
+  if (!known)
+    for (const auto& entry : true_id_of) ++mapped_true[entry.second];
   for (std::size_t i = 0; i < readings.size(); ++i) {
+    const sylva::slam::ReadingResult& r = report.readings[i];
+    const Id truth = readings[i].id;
+    if (r.outcome == Outcome::kAdded) true_id_of[*r.landmark] = truth;
+    if (known) continue;
     ++stats.readings;
-    if (pairing[i]) {
+    if (r.outcome == Outcome::kPaired) {
       ++stats.paired;
-      if (true_id_of.at(*pairing[i]) != readings[i].id) ++stats.wrong;
-      paired.push_back({*pairing[i], readings[i].z, R});
-      continue;
-    }
-    if (sylva::smallestNis(ekf, model, z[i], R, cands) > new_gate) {
-      to_add.push_back(i);
-    } else {
+      if (true_id_of.at(*r.landmark) != truth) ++stats.wrong;
+    } else if (r.outcome == Outcome::kAmbiguous) {
       ++stats.ambiguous;
+    } else if (r.outcome == Outcome::kAdded) {
+      ++stats.added;
+      if (mapped_true[truth]++ > 0) ++stats.duplicates;
     }
-  }
-  fuse(ekf, world, paired);
-  for (const std::size_t i : to_add) {
-    const Id id = next_id++;
-    ekf.add(id, inverse, readings[i].z, R);
-    true_id_of[id] = readings[i].id;
-    ++stats.added;
-    if (mapped_true.count(readings[i].id)) ++stats.duplicates;
-    ++mapped_true[readings[i].id];
   }
 }
 
@@ -322,8 +281,10 @@ RunResult runOnce(const World& world, const Options& o, int run, StepStats& stat
 
   Filter ekf(start, Mat<3, 3>::Zero());
   ekf.reserve(2 * static_cast<int>(world.landmarks.size()));
+  FrontEnd front_end = makeFrontEnd(world, o);
+  const bool known = world.association == Association::kKnown;
+  std::vector<FrontEnd::ReadingType> told;  // the readings as the filter is told them
   std::unordered_map<Id, Id> true_id_of;  // filter id -> simulator id (evaluation only)
-  Id next_id = 0;
   Vec<3> odometry_pose = start;
   RunResult result;
   auto& map = result.map;
@@ -339,7 +300,10 @@ RunResult runOnce(const World& world, const Options& o, int run, StepStats& stat
     ekf.predict(step.odometry, dt, world.odometry_noise_told);
     odometry_pose = unicycle(odometry_pose, step.odometry, dt);
     const auto readings = world.sensor.observe(step.true_pose, world.landmarks, rng);
-    associateAndFuse(ekf, world, o, readings, true_id_of, next_id, result.association);
+    told.clear();
+    for (const auto& reading : readings)
+      told.push_back({reading.z, world.sensor_noise_told, std::nullopt, known ? std::optional<Id>(reading.id) : std::nullopt});
+    score(front_end.update(ekf, told, k * dt), readings, known, true_id_of, result.association);
 
     const Vec<3> estimate = ekf.robotMean();
     const Vec<3> error = sylva::Unicycle2D::difference(step.true_pose, estimate);

@@ -14,6 +14,7 @@
 // frame up to that small uncertainty. Observations of the other robots are not used, and
 // neither are the misread barcodes (the loader keeps both out of landmark_observations).
 //
+// Association, fusion and new landmarks are sylva::slam::FrontEnd's, with these options.
 // Known correspondences: the barcode names the landmark. An observation of a mapped landmark
 // whose NIS exceeds the chi-square gate (outlier_gate_probability, 2 dof) is rejected as an
 // outlier; the first observation of a landmark adds it (a second one in the same image is
@@ -36,15 +37,13 @@
 #include <type_traits>
 #include <vector>
 
-#include <sylva/association/jcbb.hpp>
-#include <sylva/association/smallest_nis.hpp>
-#include <sylva/consistency/chi_square.hpp>
 #include <sylva/datasets/utias_mrclam.hpp>
 #include <sylva/filter/ekf.hpp>
 #include <sylva/landmarks/point2.hpp>
 #include <sylva/measurements/range_bearing.hpp>
 #include <sylva/motion/unicycle_2d.hpp>
 #include <sylva/motion/unicycle_2d_with_bias.hpp>
+#include <sylva/slam/front_end.hpp>
 #include <sylva/slam/reach.hpp>
 
 #include "noise_model.hpp"
@@ -96,16 +95,6 @@ struct RunResult {
   Vec<3> gain_sigmas = Vec<3>::Zero();  ///< ... and their sigmas
 };
 
-namespace detail {
-
-/// Mapped landmarks whose predicted reading is within the configured reach (JCBB candidates).
-template <typename AnyFilter>
-std::vector<Id> candidates(const AnyFilter& ekf, const NoiseConfig& c) {
-  return sylva::slam::landmarksInReach<sylva::Point2>(ekf, sylva::RangeBearing{},
-                                                      {c.candidate_range_m, c.candidate_half_fov_rad, 1e-6});
-}
-
-}  // namespace detail
 
 /// runSlam (below) with the filter type chosen.
 template <typename AnyFilter>
@@ -117,11 +106,7 @@ RunResult runSlamWith(const sylva::datasets::UtiasRobotData& robot,
   constexpr bool kOnline = std::is_same_v<AnyFilter, GainFilter>;
   using sylva::datasets::UtiasObservation;
   const auto start_clock = std::chrono::steady_clock::now();
-  const sylva::RangeBearing model;
-  const sylva::InverseRangeBearing inverse;
   const sylva::Unicycle2D unicycle;
-  const double outlier_gate = sylva::chiSquareGate(2, config.outlier_gate_probability);
-  const double new_gate = sylva::chiSquareGate(2, config.new_landmark_probability);
 
   const auto& first = robot.groundtruth.front();
   const Mat<3, 3> P0 = config.initial_sigma.cwiseAbs2().asDiagonal();
@@ -145,12 +130,23 @@ RunResult runSlamWith(const sylva::datasets::UtiasRobotData& robot,
   Vec<2> u_dead = Vec<2>::Zero();  // the calibrated command of the dead reckoning
   Vec<2> jitter = Vec<2>::Zero();  // pending pose effect of command changes (see command_jitter_s)
   std::map<Id, int> subject_of;  // filter id -> label subject
-  std::map<Id, double> last_fused;  // filter id -> time of its last fused reading
-  auto due = [&](Id id, double now) {
-    const auto it = last_fused.find(id);
-    return it == last_fused.end() || now - it->second >= config.landmark_interval_s - 1e-9;
-  };
-  Id next_id = 1000;             // JCBB ids, apart from subject numbers
+  sylva::slam::FrontEndOptions options;
+  options.min_fusion_interval_s = config.landmark_interval_s;
+  if (association == Association::kKnown) {
+    options.association = sylva::slam::Association::kKnownIds;
+    options.known_id_gate_probability = config.outlier_gate_probability;
+  } else {
+    options.association = sylva::slam::Association::kJcbb;
+    options.gate_probability = config.jcbb_gate_probability;
+    options.new_landmark_probability = config.new_landmark_probability;
+    options.first_new_id = 1000;  // apart from subject numbers
+  }
+  sylva::slam::FrontEnd<AnyFilter, sylva::RangeBearing, sylva::InverseRangeBearing> front_end(
+      sylva::RangeBearing{}, sylva::InverseRangeBearing{}, options,
+      sylva::slam::candidatesInReach<sylva::Point2>(
+          sylva::RangeBearing{}, {config.candidate_range_m, config.candidate_half_fov_rad, 1e-6}));
+  using sylva::slam::Outcome;
+  std::vector<sylva::slam::Reading<2>> readings;
 
   RunResult out;
   const auto& cmds = robot.odometry;
@@ -158,9 +154,7 @@ RunResult runSlamWith(const sylva::datasets::UtiasRobotData& robot,
   out.samples.reserve(cmds.size() + obs.size());
   const double end = max_time_s > 0.0 ? first.time_s + max_time_s : std::numeric_limits<double>::infinity();
   std::size_t i = 0, j = 0;
-  std::vector<sylva::Observation<sylva::RangeBearing>> paired;
   std::vector<const UtiasObservation*> group;
-  std::vector<Vec<2>> z;
   while (i < cmds.size() || j < obs.size()) {
     const double delay = config.command_delay_s;
     const bool command = j == obs.size() || (i < cmds.size() && cmds[i].time_s + delay <= obs[j].time_s);
@@ -196,83 +190,48 @@ RunResult runSlamWith(const sylva::datasets::UtiasRobotData& robot,
       group.clear();
       while (j < obs.size() && obs[j].time_s == te) group.push_back(&obs[j++]);
       out.counts.observations += static_cast<long>(group.size());
-      paired.clear();
+      readings.clear();
       if (association == Association::kKnown) {
-        std::vector<const UtiasObservation*> fresh;
-        for (const UtiasObservation* o : group) {
-          const Id id = o->subject;
-          const sylva::Gaussian<2> R = config.measurementNoise(o->z[0]);
-          if (!ekf.contains(id)) {
-            fresh.push_back(o);
-          } else if (!due(id, te)) {
-            ++out.counts.thinned;
-          } else if (ekf.innovation(model, id, o->z, R).nis() > outlier_gate) {
-            ++out.counts.gated_out;
-          } else {
-            paired.push_back({id, o->z, R});
-          }
-        }
-        ekf.update(model, paired);
-        for (const auto& p : paired) last_fused[p.id] = te;
-        out.counts.paired += static_cast<long>(paired.size());
-        for (const UtiasObservation* o : fresh) {
-          const sylva::Gaussian<2> R = config.measurementNoise(o->z[0]);
-          if (ekf.contains(o->subject)) {  // seen twice in one image: the first one is enough
-            ++out.counts.thinned;
-            continue;
-          }
-          ekf.add(o->subject, inverse, o->z, R);
-          last_fused[o->subject] = te;
-          subject_of[o->subject] = o->subject;
-          ++out.counts.added;
-        }
+        for (const UtiasObservation* o : group)
+          readings.push_back({o->z, config.measurementNoise(o->z[0]), std::nullopt, Id{o->subject}});
       } else {
-        z.clear();
+        // One noise for the image: that of its farthest reading. Association (JCBB's gates
+        // and the new-landmark rule) uses jcbb_noise_scale x its sigmas.
         double farthest = 0.0;
-        for (const UtiasObservation* o : group) {
-          z.push_back(o->z);
-          farthest = std::max(farthest, o->z[0]);
-        }
-        // associateJcbb takes one noise for the image: that of its farthest reading.
+        for (const UtiasObservation* o : group) farthest = std::max(farthest, o->z[0]);
         const sylva::Gaussian<2> R = config.measurementNoise(farthest);
-        // Association (JCBB's gates and the new-landmark rule) may use a smaller noise than
-        // the fusion: jcbb_noise_scale x the sigmas.
-        const sylva::Gaussian<2> R_assoc = sylva::Gaussian<2>::covariance(R.covariance() * (config.jcbb_noise_scale * config.jcbb_noise_scale));
-        const std::vector<Id> cands = detail::candidates(ekf, config);
-        const std::vector<std::optional<Id>> pairing =
-            sylva::associateJcbb(ekf, model, z, R_assoc, cands, config.jcbb_gate_probability);
-        std::vector<std::size_t> to_add;
-        for (std::size_t k = 0; k < group.size(); ++k) {
-          if (pairing[k]) {
-            if (!due(*pairing[k], te)) {
-              ++out.counts.thinned;
-              continue;
-            }
-            paired.push_back({*pairing[k], z[k], R});
+        const sylva::Gaussian<2> R_assoc =
+            sylva::Gaussian<2>::covariance(R.covariance() * (config.jcbb_noise_scale * config.jcbb_noise_scale));
+        for (const UtiasObservation* o : group) readings.push_back({o->z, R, R_assoc});
+      }
+      const sylva::slam::StepReport& report = front_end.update(ekf, readings, te);
+      for (std::size_t k = 0; k < group.size(); ++k) {
+        const sylva::slam::ReadingResult& r = report.readings[k];
+        const int subject = group[k]->subject;
+        switch (r.outcome) {
+          case Outcome::kPaired: {
             ++out.counts.paired;
-            const int label = subject_of.at(*pairing[k]);
-            ++(label == group[k]->subject ? out.counts.correct : out.counts.wrong);
-            if (label != group[k]->subject && cluster_of != nullptr && cluster_of->count(label) != 0 &&
-                cluster_of->count(group[k]->subject) != 0 && cluster_of->at(label) == cluster_of->at(group[k]->subject))
+            if (association == Association::kKnown) break;
+            const int label = subject_of.at(*r.landmark);
+            ++(label == subject ? out.counts.correct : out.counts.wrong);
+            if (label != subject && cluster_of != nullptr && cluster_of->count(label) != 0 &&
+                cluster_of->count(subject) != 0 && cluster_of->at(label) == cluster_of->at(subject))
               ++out.counts.wrong_same_cluster;
-            continue;
+            break;
           }
-          if (sylva::smallestNis(ekf, model, z[k], R_assoc, cands) > new_gate)
-            to_add.push_back(k);
-          else
-            ++out.counts.ambiguous;
-        }
-        ekf.update(model, paired);
-        for (const auto& p : paired) last_fused[p.id] = te;
-        for (const std::size_t k : to_add) {
-          bool seen = false;
-          for (const auto& entry : subject_of) seen = seen || entry.second == group[k]->subject;
-          out.counts.duplicates += seen ? 1 : 0;
-          const Id id = next_id++;
-          ekf.add(id, inverse, z[k], R);
-          last_fused[id] = te;
-          subject_of[id] = group[k]->subject;
-          ++out.counts.added;
+          case Outcome::kAdded: {
+            bool seen = false;
+            for (const auto& entry : subject_of) seen = seen || entry.second == subject;
+            if (association != Association::kKnown) out.counts.duplicates += seen ? 1 : 0;
+            subject_of[*r.landmark] = subject;
+            ++out.counts.added;
+            break;
+          }
+          case Outcome::kThinned:
+          case Outcome::kRepeated: ++out.counts.thinned; break;
+          case Outcome::kGatedOut: ++out.counts.gated_out; break;
+          case Outcome::kAmbiguous: ++out.counts.ambiguous; break;
+          default: break;
         }
       }
     }

@@ -14,6 +14,7 @@
 //      the same D and Phi, and the per-sample control noise is scaled by dt_s / T (independent
 //      per-sample errors add up). "odometry": one filter prediction per sample segment, the
 //      same scaling. The mean differs by the chord-vs-arc error of a 0.2 s step (mm).
+//   Steps 2-5 are sylva::slam::FrontEnd's, with these options:
 //   2. Candidates: map landmarks whose predicted range is below max range + 5 m and whose
 //      bearing is within 100 deg of the car's axis (the laser sees 180 deg ahead).
 //   3. Association of the readings (range <= max range) with the candidates: JCBB (default)
@@ -29,17 +30,15 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <optional>
 #include <vector>
 
-#include <sylva/association.hpp>
-#include <sylva/consistency/chi_square.hpp>
 #include <sylva/datasets/victoria_park.hpp>
 #include <sylva/filter/ekf.hpp>
 #include <sylva/landmarks.hpp>
 #include <sylva/measurements.hpp>
 #include <sylva/motion/ackermann_2d.hpp>
 #include <sylva/motion/ackermann_2d_with_bias.hpp>
+#include <sylva/slam/front_end.hpp>
 #include <sylva/slam/reach.hpp>
 
 #include "config.hpp"
@@ -182,12 +181,6 @@ class OdometryIntegrator {
   double t_ = 0.0;
 };
 
-struct Tentative {
-  Vec<2> p;
-  int count;
-  double last_t;
-};
-
 }  // namespace detail
 
 template <class V, class Car>
@@ -200,10 +193,7 @@ RunResult runSlamWith(const ds::VictoriaParkData& data, const Config& cfg, const
 
   const Car car(cfg.wheelbase_m, cfg.encoder_offset_m);
   const Vec<2> mount(cfg.wheelbase_m + cfg.laser_ahead_m, cfg.laser_left_m);
-  const Model model(mount);
-  const typename V::Inverse inverse(mount);
   const Gaussian<M> R = V::noise(cfg);
-  const double new_gate = sylva::chiSquareGate(M, cfg.new_landmark_probability);
 
   // The car starts at the origin of the map; the biases (if any) at zero with their priors.
   Mat<kCarDim, kCarDim> P0 = Mat<kCarDim, kCarDim>::Zero();
@@ -219,15 +209,23 @@ RunResult runSlamWith(const ds::VictoriaParkData& data, const Config& cfg, const
   ekf.reserve(V::Landmark::kDim * 512);
   detail::OdometryIntegrator<Filter> odometry(data.odometry, cfg, sylva::Ackermann2D(cfg.wheelbase_m, cfg.encoder_offset_m));
 
+  // Steps 2-5 of the file comment. Candidates: landmarks in front of the laser and within range.
+  sylva::slam::FrontEndOptions options;
+  options.association = cfg.association == "nn" ? sylva::slam::Association::kNearestNeighbor : sylva::slam::Association::kJcbb;
+  options.gate_probability = cfg.gate_probability;
+  options.new_landmark_probability = cfg.new_landmark_probability;
+  options.new_landmarks = sylva::slam::NewLandmarks::kTentative;
+  options.tentative = {cfg.confirm_sightings, cfg.tentative_radius_m, cfg.tentative_timeout_s};
+  sylva::slam::FrontEnd<Filter, Model, typename V::Inverse> front_end(
+      Model(mount), typename V::Inverse(mount), options,
+      sylva::slam::candidatesInReach<typename V::Landmark>(sylva::RangeBearing(mount),
+                                                           {cfg.max_range_m + 5.0, 100.0 * sylva::kRadPerDeg}));
+
   RunResult out;
   out.variant = V::kName;
-  std::vector<detail::Tentative> tentatives;
-  std::vector<int> sightings;  // per landmark id
   std::vector<TimedPoint> path;
   std::vector<double> step_ms;
-  std::vector<Vec<M>> z;
-  std::vector<Id> candidates;
-  std::vector<sylva::Observation<Model>> observations;
+  std::vector<sylva::slam::Reading<M>> readings;
   const double t_start = data.scans.front().t_s;
   const auto run_begin = Clock::now();
 
@@ -237,89 +235,16 @@ RunResult runSlamWith(const ds::VictoriaParkData& data, const Config& cfg, const
     out.predictions += odometry.advanceTo(ekf, scan.t_s);
     ++out.scans;
 
-    z.clear();
+    readings.clear();
     for (const auto& d : scan.detections)
-      if (d.range_m <= cfg.max_range_m) z.push_back(V::measurement(d));
-    out.readings += static_cast<long>(z.size());
-
-    // Candidates: landmarks in front of the laser and within range.
-    sylva::slam::landmarksInReach<typename V::Landmark>(
-        ekf, sylva::RangeBearing(mount), {cfg.max_range_m + 5.0, 100.0 * sylva::kRadPerDeg}, candidates);
-
-    std::vector<std::optional<Id>> pairing(z.size());
-    if (!z.empty() && !candidates.empty())
-      pairing = cfg.association == "nn"
-                    ? sylva::associateNearestNeighbor(ekf, model, z, R, candidates, cfg.gate_probability)
-                    : sylva::associateJcbb(ekf, model, z, R, candidates, cfg.gate_probability);
-
-    // Which unpaired readings are far from every landmark (computed before the update).
-    std::vector<char> is_new(z.size(), 0);
-    for (std::size_t i = 0; i < z.size(); ++i) {
-      if (pairing[i]) continue;
-      const bool clear = sylva::smallestNis(ekf, model, z[i], R, candidates) >= new_gate;
-      is_new[i] = clear ? 1 : 0;
-      if (!clear) ++out.ambiguous;
-    }
-
-    observations.clear();
-    for (std::size_t i = 0; i < z.size(); ++i)
-      if (pairing[i]) observations.push_back(sylva::Observation<Model>{*pairing[i], z[i], R});
-    if (!observations.empty()) {
-      try {
-        ekf.update(model, observations);
-        out.paired += static_cast<long>(observations.size());
-      } catch (const sylva::Error&) {
-        for (const auto& o : observations) {
-          try {
-            ekf.update(model, o.id, o.z, o.noise);
-            ++out.paired;
-          } catch (const sylva::Error&) {
-            ++out.refused_updates;
-          }
-        }
-      }
-      for (const auto& o : observations) ++sightings[static_cast<std::size_t>(o.id)];
-    }
-
-    // Tentative tracks and new landmarks, at the updated estimate.
-    for (std::size_t i = 0; i < z.size(); ++i) {
-      if (!is_new[i]) continue;
-      ++out.tentative_readings;
-      const Vec<2> p =
-          sylva::InverseRangeBearing(mount)(Vec<3>(ekf.robotMean().template head<3>()), Vec<2>(z[i].template head<2>()));
-      detail::Tentative* best = nullptr;
-      double best_d = cfg.tentative_radius_m;
-      for (auto& t : tentatives) {
-        const double d = (t.p - p).norm();
-        if (d <= best_d && t.last_t < scan.t_s) {
-          best_d = d;
-          best = &t;
-        }
-      }
-      if (!best) {
-        tentatives.push_back(detail::Tentative{p, 1, scan.t_s});
-        best = &tentatives.back();
-      } else {
-        best->p = p;
-        best->count += 1;
-        best->last_t = scan.t_s;
-      }
-      if (best->count >= cfg.confirm_sightings) {
-        const Id id = static_cast<Id>(sightings.size());
-        try {
-          ekf.add(id, inverse, z[i], R);
-          sightings.push_back(1);
-        } catch (const sylva::Error&) {
-          ++out.refused_updates;
-        }
-        best->count = -1;  // consumed
-      }
-    }
-    tentatives.erase(std::remove_if(tentatives.begin(), tentatives.end(),
-                                    [&](const detail::Tentative& t) {
-                                      return t.count < 0 || scan.t_s - t.last_t > cfg.tentative_timeout_s;
-                                    }),
-                     tentatives.end());
+      if (d.range_m <= cfg.max_range_m) readings.push_back({V::measurement(d), R});
+    out.readings += static_cast<long>(readings.size());
+    const sylva::slam::StepReport& report = front_end.update(ekf, readings, scan.t_s);
+    using sylva::slam::Outcome;
+    out.paired += report.count(Outcome::kPaired);
+    out.ambiguous += report.count(Outcome::kAmbiguous);
+    out.tentative_readings += report.count(Outcome::kTentative) + report.count(Outcome::kAdded);
+    out.refused_updates += report.count(Outcome::kRefused);
 
     const Vec<3> xr = ekf.robotMean().template head<3>();
     path.push_back(TimedPoint{scan.t_s, sylva::RangeBearing(mount).sensorPosition<double>(xr)});
@@ -338,7 +263,7 @@ RunResult runSlamWith(const ds::VictoriaParkData& data, const Config& cfg, const
   for (const TimedPoint& tp : path) out.laser_path.push_back(TimedPoint{tp.t_s, toGps(tp.p)});
   for (const sylva::LandmarkSlot& s : ekf.slots()) {
     const auto l = ekf.template landmarkMean<typename V::Landmark>(s.id);
-    out.map.push_back(MapLandmark{toGps(l.template head<2>()), V::radius(l), sightings[static_cast<std::size_t>(s.id)]});
+    out.map.push_back(MapLandmark{toGps(l.template head<2>()), V::radius(l), front_end.sightings(s.id)});
   }
   if constexpr (kCarDim == 5) {
     out.speed_scale = ekf.robotMean()[3];

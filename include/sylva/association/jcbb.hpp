@@ -68,7 +68,7 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
 
-#include "sylva/association/detail/compatibility.hpp"
+#include "sylva/association/compatibility_table.hpp"
 #include "sylva/consistency/chi_square.hpp"
 #include "sylva/core/types.hpp"
 #include "sylva/noise/gaussian.hpp"
@@ -84,10 +84,8 @@ class JcbbSearch {
 
   template <class EkfT>
   JcbbSearch(const EkfT& ekf,
-             const IndividualCompatibility<Model, RobotDim>& ic,
-             const Mat<kDim, kDim>& R,
-             double gate_probability)
-      : ic_(ic), m_(ic.measurement_count), R_(R) {
+             const CompatibilityTable<Model, RobotDim>& ic)
+      : ic_(ic), m_(ic.measurement_count) {
     // Candidates that gate with at least one measurement, and their cross blocks.
     relevant_.assign(static_cast<std::size_t>(ic.candidate_count), -1);
     std::vector<int> members;
@@ -113,7 +111,7 @@ class JcbbSearch {
     const int max_pairings = std::min(gated_measurements, relevant_count_);
     gate_.assign(static_cast<std::size_t>(max_pairings) + 1, 0.0);
     for (int k = 1; k <= max_pairings; ++k)
-      gate_[static_cast<std::size_t>(k)] = chiSquareGate(kDim * k, gate_probability);
+      gate_[static_cast<std::size_t>(k)] = chiSquareGate(kDim * k, ic.gate_probability);
 
     L_.setZero(max_pairings * kDim, max_pairings * kDim);
     y_.setZero(max_pairings * kDim);
@@ -183,7 +181,7 @@ class JcbbSearch {
           kDim;
       X.template middleRows<kDim>(a * kDim) = cross_.template block<kDim, kDim>(row, col);
     }
-    Mat<kDim, kDim> D = cross_.template block<kDim, kDim>(col, col) + R_;
+    Mat<kDim, kDim> D = cross_.template block<kDim, kDim>(col, col) + ic_.noiseOf(i);
     Vec<kDim> w = ic_.residual(i, j);
     if (n > 0) {
       L_.topLeftCorner(n, n).template triangularView<Eigen::Lower>().solveInPlace(X);
@@ -202,9 +200,8 @@ class JcbbSearch {
     return true;
   }
 
-  const IndividualCompatibility<Model, RobotDim>& ic_;
+  const CompatibilityTable<Model, RobotDim>& ic_;
   int m_;
-  Mat<kDim, kDim> R_;
   std::vector<int> relevant_;  ///< candidate -> block index in cross_, -1 if it never gates
   int relevant_count_ = 0;
   Eigen::MatrixXd cross_;     ///< H_a P H_b^T between relevant candidates
@@ -224,6 +221,19 @@ class JcbbSearch {
 
 }  // namespace detail
 
+/// JCBB on a compatibility table built at the filter's current estimate (the same filter).
+template <class EkfT, class Model>
+std::vector<std::optional<Id>> associateJcbb(const EkfT& ekf, const CompatibilityTable<Model, EkfT::kRobotDim>& ic) {
+  std::vector<std::optional<Id>> pairing(static_cast<std::size_t>(ic.measurement_count), std::nullopt);
+  if (ic.measurement_count == 0 || ic.candidate_count == 0) return pairing;
+  detail::JcbbSearch<Model, EkfT::kRobotDim> search(ekf, ic);
+  const std::vector<int>& best = search.run();
+  for (std::size_t i = 0; i < best.size(); ++i)
+    if (best[i] >= 0) pairing[i] = ic.candidates[static_cast<std::size_t>(best[i])];
+  return pairing;
+}
+
+/// One noise for every measurement.
 template <class EkfT, class Model>
 std::vector<std::optional<Id>> associateJcbb(const EkfT& ekf,
                                              const Model& model,
@@ -231,20 +241,24 @@ std::vector<std::optional<Id>> associateJcbb(const EkfT& ekf,
                                              const Gaussian<Model::kDim>& noise,
                                              const std::vector<Id>& candidates,
                                              double gate_probability = 0.99) {
+  return associateJcbb(ekf, detail::buildCompatibilityTable(ekf, model, measurements, {noise.covariance()}, candidates,
+                                                            gate_probability, "associateJcbb"));
+}
+
+/// One noise per measurement (`noises[i]` for `measurements[i]`; kInvalidArgument when the
+/// sizes differ): the individual gates use S_ij = H_j P H_j^T + R_i and the joint test
+/// blockdiag(R_i) of the paired measurements.
+template <class EkfT, class Model>
+std::vector<std::optional<Id>> associateJcbb(const EkfT& ekf,
+                                             const Model& model,
+                                             const std::vector<Vec<Model::kDim>>& measurements,
+                                             const std::vector<Gaussian<Model::kDim>>& noises,
+                                             const std::vector<Id>& candidates,
+                                             double gate_probability = 0.99) {
   constexpr const char* kWho = "associateJcbb";
-  detail::checkGateProbability(gate_probability, kWho);
-  detail::checkMeasurements(measurements, kWho);
-  detail::checkCandidates(ekf, candidates, kWho);
-
-  std::vector<std::optional<Id>> pairing(measurements.size(), std::nullopt);
-  if (measurements.empty() || candidates.empty()) return pairing;
-
-  const auto ic = detail::individualCompatibility(ekf, model, measurements, noise, candidates, gate_probability, kWho);
-  detail::JcbbSearch<Model, EkfT::kRobotDim> search(ekf, ic, noise.covariance(), gate_probability);
-  const std::vector<int>& best = search.run();
-  for (std::size_t i = 0; i < best.size(); ++i)
-    if (best[i] >= 0) pairing[i] = candidates[static_cast<std::size_t>(best[i])];
-  return pairing;
+  return associateJcbb(ekf, detail::buildCompatibilityTable(ekf, model, measurements,
+                                                            detail::noiseCovariances(noises, measurements.size(), kWho),
+                                                            candidates, gate_probability, kWho));
 }
 
 }  // namespace sylva

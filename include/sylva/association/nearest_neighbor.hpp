@@ -40,30 +40,16 @@
 #include <tuple>
 #include <vector>
 
-#include "sylva/association/detail/compatibility.hpp"
+#include "sylva/association/compatibility_table.hpp"
 #include "sylva/core/types.hpp"
 #include "sylva/noise/gaussian.hpp"
 
 namespace sylva {
 
-template <class EkfT, class Model>
-std::vector<std::optional<Id>> associateNearestNeighbor(
-    const EkfT& ekf,
-    const Model& model,
-    const std::vector<Vec<Model::kDim>>& measurements,
-    const Gaussian<Model::kDim>& noise,
-    const std::vector<Id>& candidates,
-    double gate_probability = 0.99) {
-  constexpr const char* kWho = "associateNearestNeighbor";
-  detail::checkGateProbability(gate_probability, kWho);
-  detail::checkMeasurements(measurements, kWho);
-  detail::checkCandidates(ekf, candidates, kWho);
-
-  std::vector<std::optional<Id>> pairing(measurements.size(), std::nullopt);
-  if (measurements.empty() || candidates.empty()) return pairing;
-
-  const auto ic = detail::individualCompatibility(ekf, model, measurements, noise, candidates, gate_probability, kWho);
-
+/// Nearest neighbour on a compatibility table built at the filter's current estimate.
+template <class Model, int RobotDim>
+std::vector<std::optional<Id>> associateNearestNeighbor(const CompatibilityTable<Model, RobotDim>& ic) {
+  std::vector<std::optional<Id>> pairing(static_cast<std::size_t>(ic.measurement_count), std::nullopt);
   struct Gated {
     double nis;
     int measurement;
@@ -78,15 +64,43 @@ std::vector<std::optional<Id>> associateNearestNeighbor(
            std::tie(b.nis, b.measurement, b.candidate);
   });
 
-  std::vector<char> landmark_taken(candidates.size(), 0);
+  std::vector<char> landmark_taken(ic.candidates.size(), 0);
   for (const Gated& g : gated) {
     const auto i = static_cast<std::size_t>(g.measurement);
     const auto j = static_cast<std::size_t>(g.candidate);
     if (pairing[i] || landmark_taken[j]) continue;
-    pairing[i] = candidates[j];
+    pairing[i] = ic.candidates[j];
     landmark_taken[j] = 1;
   }
   return pairing;
+}
+
+/// One noise for every measurement.
+template <class EkfT, class Model>
+std::vector<std::optional<Id>> associateNearestNeighbor(const EkfT& ekf,
+                                                        const Model& model,
+                                                        const std::vector<Vec<Model::kDim>>& measurements,
+                                                        const Gaussian<Model::kDim>& noise,
+                                                        const std::vector<Id>& candidates,
+                                                        double gate_probability = 0.99) {
+  return associateNearestNeighbor(detail::buildCompatibilityTable(ekf, model, measurements, {noise.covariance()},
+                                                                  candidates, gate_probability,
+                                                                  "associateNearestNeighbor"));
+}
+
+/// One noise per measurement (`noises[i]` for `measurements[i]`; kInvalidArgument when the
+/// sizes differ): S_ij = H_j P H_j^T + R_i.
+template <class EkfT, class Model>
+std::vector<std::optional<Id>> associateNearestNeighbor(const EkfT& ekf,
+                                                        const Model& model,
+                                                        const std::vector<Vec<Model::kDim>>& measurements,
+                                                        const std::vector<Gaussian<Model::kDim>>& noises,
+                                                        const std::vector<Id>& candidates,
+                                                        double gate_probability = 0.99) {
+  constexpr const char* kWho = "associateNearestNeighbor";
+  return associateNearestNeighbor(detail::buildCompatibilityTable(
+      ekf, model, measurements, detail::noiseCovariances(noises, measurements.size(), kWho), candidates,
+      gate_probability, kWho));
 }
 
 }  // namespace sylva

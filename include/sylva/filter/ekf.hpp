@@ -32,6 +32,7 @@
 #include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <iterator>
 #include <limits>
 #include <sstream>
@@ -302,6 +303,7 @@ class BasicEkf {
     robot_ideal_.setConstant(std::numeric_limits<double>::quiet_NaN());
     cov_.template topLeftCorner<kRobotDim, kRobotDim>() = 0.5 * (P0 + P0.transpose());
     n_ = kRobotDim;
+    revision_ = detail::nextRevision();
   }
 
   /// Pre-allocates storage for landmarks totalling `landmark_dims` state entries so that
@@ -313,6 +315,7 @@ class BasicEkf {
   /// choice can be made at any time. kFirstEstimates needs a robot with
   /// `firstEstimatesJacobian` (else kInvalidArgument, and the filter is unchanged).
   void setLinearizationPoint(LinearizationPoint point) {
+    revision_ = detail::nextRevision();
     if constexpr (!detail::HasFirstEstimatesJacobian<Robot>::value) {
       if (point == LinearizationPoint::kFirstEstimates)
         fail(ErrorCode::kInvalidArgument,
@@ -362,6 +365,7 @@ class BasicEkf {
   /// over the true state before a predict (the state it starts from) and after it (the state
   /// the updates see). Non-finite input is refused (kNonFinite); the filter is unchanged.
   void setIdealRobot(const RobotState& x_true) {
+    revision_ = detail::nextRevision();
     if (!x_true.allFinite()) fail(ErrorCode::kNonFinite, "Ekf::setIdealRobot: the true robot state is not finite");
     checkRobotDomain(x_true, "Ekf::setIdealRobot: the true robot state");
     robot_ideal_ = x_true;
@@ -373,6 +377,7 @@ class BasicEkf {
   /// kNonFinite, and the filter is unchanged.
   template <typename Landmark>
   void setIdealLandmark(Id id, const Vec<Landmark::kDim>& l_true) {
+    revision_ = detail::nextRevision();
     const LandmarkSlot& s = typedSlot<Landmark>(id, "Ekf::setIdealLandmark");
     if (!l_true.allFinite())
       fail(ErrorCode::kNonFinite, "Ekf::setIdealLandmark: the true state of landmark " + std::to_string(id) + " is not finite");
@@ -383,6 +388,11 @@ class BasicEkf {
 
   /// State dimension n = robot + all landmark blocks.
   int dim() const { return n_; }
+
+  /// Changes with every change of the state, or of where it is linearized. A
+  /// `Linearization` records the revision it was made at; `update` with linearizations
+  /// refuses one made at another revision (or by another filter).
+  std::uint64_t revision() const { return revision_; }
   int landmarkCount() const { return static_cast<int>(slots_.size()); }
   const std::vector<LandmarkSlot>& slots() const { return slots_; }
   bool contains(Id id) const { return index_.count(id) != 0; }
@@ -460,6 +470,7 @@ class BasicEkf {
   /// Moves the robot by `u` over `dt` seconds with control noise `noise` (eq. 2.22-2.27):
   /// only the robot block and its cross-covariances change, O(n).
   void predict(const Control& u, double dt, const Gaussian<kNoiseDim>& noise) {
+    revision_ = detail::nextRevision();
     if (!std::isfinite(dt)) fail(ErrorCode::kNonFinite, "Ekf::predict: dt is not finite");
     if (dt < 0.0) {
       std::ostringstream os;
@@ -593,6 +604,31 @@ class BasicEkf {
       updateSequentially(model, observations);
       return;
     }
+    updateBatched(model, observations, static_cast<const Linearization<Model, kRobotDim>*>(nullptr));
+  }
+
+  /// The batched update with the observations' linearizations already made at the current
+  /// state (`linearizations[i]` for observation i, from `linearize`, or from a
+  /// `CompatibilityTable`), so that no landmark is linearized twice in one step. The result
+  /// is bit for bit that of `update(model, observations)`. A linearization made at another
+  /// revision of the filter, or for another landmark block, is refused (kInvalidArgument),
+  /// as is a list of another length; the filter is then unchanged.
+  template <typename Model, typename ObservationRange>
+  void update(const Model& model,
+              const ObservationRange& observations,
+              const std::vector<Linearization<Model, kRobotDim>>& linearizations) {
+    checkModel<Model>();
+    if (linearizations.size() != std::size(observations))
+      fail(ErrorCode::kInvalidArgument, nameOf<Model>() + ": " + std::to_string(linearizations.size()) +
+                                            " linearizations for " + std::to_string(std::size(observations)) +
+                                            " observations");
+    updateBatched(model, observations, linearizations.data());
+  }
+
+ private:
+  template <typename Model, typename ObservationRange>
+  void updateBatched(const Model& model, const ObservationRange& observations,
+                     const Linearization<Model, kRobotDim>* given) {
     constexpr int M = Model::kDim;
     constexpr int L = Model::Landmark::kDim;
     const int k = static_cast<int>(std::size(observations));
@@ -608,7 +644,7 @@ class BasicEkf {
         fail(ErrorCode::kNonFinite, nameOf<Model>() + ": measurement " + std::to_string(i) +
                                         " of the batch is not finite");
       checkMeasurement(model, obs.z, "batch", i);
-      const Linearization<Model, kRobotDim> lin = linearize(model, obs.id);
+      const Linearization<Model, kRobotDim> lin = given ? checkedLinearization(given[i], obs.id, i) : linearize(model, obs.id);
       lins.store(i, lin);
       nu.template segment<M>(i * M) = detail::residual(model, obs.z, lin.z_hat);
       ++i;
@@ -671,6 +707,22 @@ class BasicEkf {
     });
   }
 
+  /// `lin`, if it was made at this revision for landmark `id`'s block (see `update`).
+  template <typename Model>
+  const Linearization<Model, kRobotDim>& checkedLinearization(const Linearization<Model, kRobotDim>& lin, Id id,
+                                                              int i) const {
+    const LandmarkSlot& s = typedSlot<typename Model::Landmark>(id, Model::kName);
+    if (lin.revision != revision_)
+      fail(ErrorCode::kInvalidArgument, nameOf<Model>() + ": the linearization of observation " + std::to_string(i) +
+                                            " was made at another state (revision " + std::to_string(lin.revision) +
+                                            ", the filter is at " + std::to_string(revision_) + ")");
+    if (lin.landmark_offset != s.offset)
+      fail(ErrorCode::kInvalidArgument, nameOf<Model>() + ": the linearization of observation " + std::to_string(i) +
+                                            " is not of landmark " + std::to_string(id));
+    return lin;
+  }
+
+ public:
   // ---------------------------------------------------------------- gating helpers
 
   /// h(x) at the current estimate and the two non-zero blocks of H for landmark `id`, at
@@ -682,6 +734,7 @@ class BasicEkf {
     const LandmarkSlot& s = typedSlot<typename Model::Landmark>(id, Model::kName);
     Linearization<Model, kRobotDim> lin;
     lin.landmark_offset = s.offset;
+    lin.revision = revision_;
     const Vec<L> landmark = mean_.template segment<L>(s.offset);
     if (linearization_ == LinearizationPoint::kFirstEstimates) {
       lin.z_hat = detail::evaluateOn<Robot>(model, robotMean(), landmark, {}, {});
@@ -752,6 +805,7 @@ class BasicEkf {
            const InverseModel& inverse,
            const Vec<InverseModel::kMeasurementDim>& z,
            const Gaussian<InverseModel::kMeasurementDim>& noise) {
+    revision_ = detail::nextRevision();
     using Landmark = typename InverseModel::Landmark;
     constexpr int L = Landmark::kDim;
     constexpr int Z = InverseModel::kMeasurementDim;
@@ -807,6 +861,7 @@ class BasicEkf {
 
   /// Removes landmark `id`: its rows and columns leave the state. O(n^2) (moves).
   void remove(Id id) {
+    revision_ = detail::nextRevision();
     const std::size_t k = slotIndex(id);
     const LandmarkSlot s = slots_[k];
     eraseBlock(s.offset, s.dim);
@@ -826,6 +881,7 @@ class BasicEkf {
   /// The landmark keeps its id; its block moves to the end of the state. O(n).
   template <typename Conversion>
   void reparametrize(Id id, const Conversion& conversion) {
+    revision_ = detail::nextRevision();
     using From = typename Conversion::From;
     using To = typename Conversion::To;
     static_assert(kHolds<From> && kHolds<To>,
@@ -851,6 +907,7 @@ class BasicEkf {
                      const Conversion& conversion,
                      const Vec<Conversion::kMeasurementDim>& z,
                      const Gaussian<Conversion::kMeasurementDim>& noise) {
+    revision_ = detail::nextRevision();
     using From = typename Conversion::From;
     using To = typename Conversion::To;
     constexpr int Z = Conversion::kMeasurementDim;
@@ -1260,6 +1317,7 @@ class BasicEkf {
   /// the Joseph form).
   template <int M, typename PHtMap, typename Llt, typename Nu, typename RMat, typename ApplyHt>
   void applyGain(PHtMap& PHt, const Llt& llt, const Nu& nu, const RMat& R, ApplyHt&& applyHt) {
+    revision_ = detail::nextRevision();
     auto P = cov_.topLeftCorner(n_, n_);
     if constexpr (std::is_same_v<UpdateForm, JosephUpdate>) {
       const int cols = static_cast<int>(PHt.cols());
@@ -1626,6 +1684,7 @@ class BasicEkf {
   RobotState robot_ideal_;
   /// The landmarks' means, laid out as the covariance's rows (the robot's first kRobotDim
   /// entries are unused: the robot's mean is robot_mean_).
+  std::uint64_t revision_ = 0;  ///< see revision()
   Eigen::VectorXd mean_;
   /// Linearization points for kFirstEstimates, laid out as mean_: each landmark's estimate
   /// when it entered the state.

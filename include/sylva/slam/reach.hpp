@@ -83,4 +83,13 @@ std::vector<Id> landmarksInReach(const Filter& ekf, const RangeBearing& sensor, 
   return out;
 }
 
+/// The candidate source of `slam::FrontEnd` (front_end.hpp) for a planar range-bearing
+/// sensor: a callable `(const Filter&, std::vector<Id>&)` that runs `landmarksInReach`.
+/// Throws kInvalidArgument for a malformed reach, here rather than at the first step.
+template <typename Landmark>
+auto candidatesInReach(const RangeBearing& sensor, const RangeBearingReach& reach) {
+  checkReach(reach);
+  return [sensor, reach](const auto& ekf, std::vector<Id>& out) { landmarksInReach<Landmark>(ekf, sensor, reach, out); };
+}
+
 }  // namespace sylva::slam

@@ -1,0 +1,307 @@
+#pragma once
+/// @file
+/// The member functions of `sylva::slam::BasicMonocularTreeSlam` (monocular_tree_slam.hpp).
+/// Include this file in one translation unit of a program and instantiate the class there;
+/// every other file includes monocular_tree_slam.hpp only (see its comment).
+
+#include <chrono>
+#include <cmath>
+#include <optional>
+#include <type_traits>
+
+#include "sylva/consistency/chi_square.hpp"
+#include "sylva/slam/monocular_tree_slam.hpp"
+
+namespace sylva::slam {
+
+namespace detail {
+
+/// Adds the seconds between construction and destruction to `*sink` (nothing when null).
+class PhaseClock {
+ public:
+  explicit PhaseClock(double* sink) : sink_(sink) {
+    if (sink_ != nullptr) start_ = std::chrono::steady_clock::now();
+  }
+  ~PhaseClock() {
+    if (sink_ != nullptr) *sink_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  }
+  PhaseClock(const PhaseClock&) = delete;
+  PhaseClock& operator=(const PhaseClock&) = delete;
+
+ private:
+  double* sink_;
+  std::chrono::steady_clock::time_point start_;
+};
+
+}  // namespace detail
+
+template <typename Camera>
+BasicMonocularTreeSlam<Camera>::BasicMonocularTreeSlam(const TreeSlamOptions& options, const Vec<13>& x0, const Mat<13, 13>& P0)
+    : options_(options),
+      ekf_(ConstantVelocity3D{options.velocity_frame}.fromWorldVelocity(x0), priorCovariance(x0, P0),
+           Camera(ConstantVelocity3D{options.velocity_frame})),
+      id_point_(options.camera),
+      xyz_point_(options.camera),
+      tree_width_(options.camera),
+      idr_width_(options.camera),
+      init_(options.camera, options.initial_inverse_depth, options.inverse_depth_sigma),
+      idr_init_(options.camera, options.initial_inverse_depth, options.inverse_depth_sigma),
+      life_(options.camera,
+            LinearityIndexBelow{options.linearity_threshold, options.conversion_given_camera},
+            PositionSigmaBelow{options.tree_position_sigma_m, options.conversion_given_camera}),
+      accel_noise_(Gaussian<6>::sigmas(
+          (Vec<6>() << Vec<3>::Constant(options.linear_accel_sigma), Vec<3>::Constant(options.angular_accel_sigma))
+              .finished())),
+      pixel_noise_(Gaussian<2>::sigmas(Vec<2>::Constant(options.pixel_sigma_px))),
+      tree_noise_(Gaussian<3>::sigmas(Vec<3>(options.pixel_sigma_px, options.pixel_sigma_px, options.width_sigma_px))) {
+  ekf_.setLinearizationPoint(options.linearization);
+  ekf_.setGaugeInverse(options.gauge_inverse);
+  gate_.fill(std::numeric_limits<double>::infinity());
+  if (options.gate_probability > 0.0)
+    for (int dim = 1; dim <= 3; ++dim) gate_[dim] = chiSquareGate(dim, options.gate_probability);
+}
+
+template <typename Camera>
+FrameReport BasicMonocularTreeSlam<Camera>::processFrame(double dt,
+                                            const std::vector<TrunkSighting>& observations,
+                                            const FrameTruth* truth) {
+  const bool ideal = options_.linearization == LinearizationPoint::kIdeal;
+  if ((ideal || options_.unbiased_point_uv) && (truth == nullptr || truth->trees == nullptr))
+    fail(ErrorCode::kInvalidArgument,
+         "MonocularTreeSlam::processFrame: ideal linearization and unbiased point measurements are "
+         "diagnostics that need the frame's truth (FrameTruth with the trees)");
+  if (options_.unbiased_point_uv && (truth->noise_free == nullptr || truth->noise_free->size() != observations.size()))
+    fail(ErrorCode::kInvalidArgument,
+         "MonocularTreeSlam::processFrame: unbiased point measurements need the noise-free reading of every "
+         "sighting (FrameTruth::noise_free)");
+  FrameReport report;
+  if (profile_ != nullptr) ++profile_->frames;
+  {
+    detail::PhaseClock clock(profile_ != nullptr ? &profile_->predict_s : nullptr);
+    if (ideal) ekf_.setIdealRobot(ekf_.robot().fromWorldVelocity(truth->camera_before));
+    ekf_.predict(Vec<0>(), dt, accel_noise_);
+    if (ideal) {
+      ekf_.setIdealRobot(ekf_.robot().fromWorldVelocity(truth->camera));
+      setIdealLandmarks(*truth);
+    }
+  }
+
+  fresh_.clear();
+  mapped_.clear();
+  for (std::size_t i = 0; i < observations.size(); ++i) {
+    const TrunkSighting& o = observations[i];
+    Vec<2> uv = o.z.head<2>();
+    if (options_.unbiased_point_uv) {
+      // The frame's noise on the projection of the true base centre.
+      const Vec<3> base = (*truth->trees)[static_cast<std::size_t>(o.id)].head<3>();
+      uv += xyz_point_(ConstantVelocity3D::pose(truth->camera), base) - (*truth->noise_free)[i].head<2>();
+    }
+    (ekf_.contains(o.id) ? mapped_ : fresh_).push_back({o.id, o.z, uv});
+  }
+  {
+    // Gating is what fuseMapped spends beyond the updates, which fuse() books themselves.
+    const double updates_before =
+        profile_ != nullptr ? profile_->point_updates_s + profile_->width_updates_s : 0.0;
+    const auto start = std::chrono::steady_clock::now();
+    fuseMapped(report);
+    if (profile_ != nullptr)
+      profile_->gating_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() -
+                            (profile_->point_updates_s + profile_->width_updates_s - updates_before);
+  }
+
+  std::optional<detail::PhaseClock> reparametrize_clock;
+  if (profile_ != nullptr) reparametrize_clock.emplace(&profile_->reparametrize_s);
+  report.to_xyz = static_cast<int>(life_.convertInverseDepth(ekf_).size());
+  if (options_.pipeline == WidthPipeline::kFromFirstSight)
+    report.to_tree += static_cast<int>(life_.convertInverseDepthRadius(ekf_).size());
+  if (options_.pipeline == WidthPipeline::kAfterXyz) {
+    for (const Seen& s : mapped_) {
+      if (!ekf_.template holds<Point3>(s.id)) continue;
+      try {
+        if (life_.convertToTree(ekf_, s.id, s.z, tree_noise_)) ++report.to_tree;
+      } catch (const Error&) {
+        ++report.rejected;
+      }
+    }
+  }
+
+  reparametrize_clock.reset();
+
+  detail::PhaseClock add_clock(profile_ != nullptr ? &profile_->add_s : nullptr);
+  for (const Seen& s : fresh_) {
+    try {
+      if (options_.pipeline == WidthPipeline::kFromFirstSight)
+        ekf_.add(s.id, idr_init_, idr_init_.measurement(s.z), idr_init_.noise(tree_noise_));
+      else
+        ekf_.add(s.id, init_, init_.measurement(s.uv), init_.noise(pixel_noise_));
+      ++report.added;
+      if (ideal) true_anchor_[s.id] = truth->camera.head<3>();
+    } catch (const Error&) {
+      ++report.rejected;
+    }
+  }
+  if (ideal) setIdealLandmarks(*truth);  // for the landmarks added or converted above
+  return report;
+}
+
+template <typename Camera>
+void BasicMonocularTreeSlam<Camera>::setIdealLandmarks(const FrameTruth& truth) {
+  for (const auto& slot : ekf_.slots()) {
+    const Vec<4>& tree = (*truth.trees)[static_cast<std::size_t>(slot.id)];
+    const Vec<3> base = tree.head<3>();
+    ekf_.visit(slot.id, [&](auto type) {
+      using Landmark = typename decltype(type)::type;
+      if constexpr (std::is_same_v<Landmark, Point3>) {
+        ekf_.template setIdealLandmark<Landmark>(slot.id, base);
+      } else if constexpr (std::is_same_v<Landmark, TreeXYZR>) {
+        ekf_.template setIdealLandmark<Landmark>(slot.id, tree);
+      } else {
+        // Inverse depth (and IDR) of the base centre from the true camera position at the
+        // first sight: the parametrization's true value.
+        const Vec<3> anchor = true_anchor_.at(slot.id);
+        const Vec<3> d = base - anchor;
+        const double rho = 1.0 / d.norm();
+        Vec<7> l;
+        l << anchor, std::atan2(d.y(), d.x()), std::atan2(d.z(), d.head<2>().norm()), rho, tree[3] * rho;
+        ekf_.template setIdealLandmark<Landmark>(slot.id, l.head<Landmark::kDim>());
+      }
+    });
+  }
+}
+
+template <typename Camera>
+std::array<int, 4> BasicMonocularTreeSlam<Camera>::countByType() const {
+  std::array<int, 4> n{0, 0, 0, 0};
+  for (const auto& s : ekf_.slots()) ++n[static_cast<std::size_t>(s.type_index)];
+  return n;
+}
+
+template <typename Camera>
+double BasicMonocularTreeSlam<Camera>::nisOf(const Filter& ekf, const Seen& s) const {
+  try {
+    return withModelOf(ekf, s, [&](const auto& model, const auto& z, const auto& noise) {
+      return ekf.innovation(model, s.id, z, noise).nis();
+    });
+  } catch (const Error&) {
+    return kUnpredictable;
+  }
+}
+
+template <typename Camera>
+bool BasicMonocularTreeSlam<Camera>::passes(const Filter& ekf, const Seen& s) const { return withinGate(ekf, s.id, nisOf(ekf, s)); }
+
+template <typename Camera>
+bool BasicMonocularTreeSlam<Camera>::withinGate(const Filter& ekf, Id id, double nis) const {
+  if (!(nis < kUnpredictable)) return false;
+  const bool with_width = ekf.template holds<TreeXYZR>(id) || ekf.template holds<InverseDepthRadius>(id);
+  return nis < gate_[with_width ? 3 : 2];
+}
+
+template <typename Camera>
+void BasicMonocularTreeSlam<Camera>::fuseOne(Filter& ekf, const Seen& s) const {
+  withModelOf(ekf, s, [&](const auto& model, const auto& z, const auto& noise) { ekf.update(model, s.id, z, noise); });
+}
+
+template <typename Camera>
+void BasicMonocularTreeSlam<Camera>::fuseMapped(FrameReport& report) {
+  candidates_.clear();
+  for (const Seen& s : mapped_) {
+    const double nis = nisOf(ekf_, s);
+    if (nis < kUnpredictable) {
+      candidates_.push_back({s, nis});
+      report.nis[static_cast<std::size_t>(ekf_.slot(s.id).type_index)].add(nis);
+    } else {
+      ++report.rejected;
+    }
+  }
+  if (candidates_.empty()) return;
+  accepted_.clear();
+  refused_.clear();
+  for (const Candidate& c : candidates_) (withinGate(ekf_, c.seen.id, c.nis) ? accepted_ : refused_).push_back(c.seen);
+
+  const bool gated = options_.gate_probability > 0.0;
+  if (gated && candidates_.size() >= 2 && 2 * accepted_.size() < candidates_.size()) {
+    std::sort(candidates_.begin(), candidates_.end(),
+              [](const Candidate& a, const Candidate& b) { return a.nis < b.nis; });
+    int best = -1;
+    std::size_t best_support = accepted_.size();
+    const int tries = std::min<int>(kMaxHypotheses, static_cast<int>(candidates_.size()));
+    for (int h = 0; h < tries; ++h) {
+      Filter trial = ekf_;
+      try {
+        fuseOne(trial, candidates_[h].seen);
+      } catch (const Error&) {
+        continue;
+      }
+      std::size_t support = 0;
+      for (int j = 0; j < static_cast<int>(candidates_.size()); ++j)
+        if (j != h && passes(trial, candidates_[j].seen)) ++support;
+      if (support > best_support) {
+        best_support = support;
+        best = h;
+      }
+    }
+    if (best >= 0) {
+      const Seen chosen = candidates_[best].seen;
+      fuseOne(ekf_, chosen);  // succeeded on the copy, so it succeeds here
+      ++report.fused;
+      ++report.hypotheses;
+      accepted_.clear();
+      refused_.clear();
+      for (const Candidate& c : candidates_) {
+        if (c.seen.id == chosen.id) continue;
+        (passes(ekf_, c.seen) ? accepted_ : refused_).push_back(c.seen);
+      }
+    }
+  }
+
+  fuseBatches(accepted_, report);
+  if (refused_.empty()) return;
+  second_chance_.clear();
+  for (const Seen& s : refused_) {
+    if (passes(ekf_, s)) second_chance_.push_back(s);
+    else ++report.rejected;
+  }
+  fuseBatches(second_chance_, report);
+}
+
+template <typename Camera>
+void BasicMonocularTreeSlam<Camera>::fuseBatches(const std::vector<Seen>& observations, FrameReport& report) {
+  id_batch_.clear();
+  xyz_batch_.clear();
+  tree_batch_.clear();
+  idr_batch_.clear();
+  for (const Seen& s : observations)
+    withModelOf(ekf_, s, [&](const auto& model, const auto& z, const auto& noise) {
+      batchOf(model).push_back({s.id, z, noise});
+    });
+  fuse(id_point_, id_batch_, report);
+  fuse(xyz_point_, xyz_batch_, report);
+  fuse(tree_width_, tree_batch_, report);
+  fuse(idr_width_, idr_batch_, report);
+}
+
+template <typename Camera>
+template <typename Model>
+void BasicMonocularTreeSlam<Camera>::fuse(const Model& model, const std::vector<Observation<Model>>& batch, FrameReport& report) {
+  if (batch.empty()) return;
+  detail::PhaseClock clock(profile_ == nullptr ? nullptr
+                                       : Model::kDim == 3 ? &profile_->width_updates_s : &profile_->point_updates_s);
+  try {
+    ekf_.update(model, batch);
+    report.fused += static_cast<int>(batch.size());
+    return;
+  } catch (const Error&) {
+    // The filter is unchanged; fall back to one observation at a time.
+  }
+  for (const auto& o : batch) {
+    try {
+      ekf_.update(model, o.id, o.z, o.noise);
+      ++report.fused;
+    } catch (const Error&) {
+      ++report.rejected;
+    }
+  }
+}
+
+}  // namespace sylva::slam
