@@ -1,18 +1,16 @@
 #pragma once
 // SVG plot of the robot pose error and its 3-sigma bounds over time (as Fig. 3.15-3.16 of
 // the multisensor thesis): three panels (x, y, heading), one colour per variant, the error
-// as a solid line and +-3 sigma as dashed lines. Fixed number formatting: the file depends
-// only on the data.
+// as a solid line and +-3 sigma as dashed lines. Drawn with examples/common/svg_plot.hpp.
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
-#include <iomanip>
-#include <sstream>
 #include <string>
 #include <vector>
 
-#include <sylva/core/error.hpp>
+#include <sylva/core/types.hpp>
+
+#include "../common/svg_plot.hpp"
 
 namespace laser_camera_slam {
 
@@ -24,77 +22,55 @@ struct SigmaSeries {
   std::vector<double> sigma[3];
 };
 
-inline std::string fmt(double v, int digits = 2) {
-  std::ostringstream os;
-  os << std::fixed << std::setprecision(digits) << v;
-  std::string s = os.str();
-  if (s == "-0.00" || s == "-0.0" || s == "-0") s = s.substr(1);
-  return s;
-}
-
-inline void writeSigmaPlot(const std::string& file, const std::string& title, const std::vector<SigmaSeries>& series) {
-  const double left = 80, width = 900, panel = 200, gap = 50, top = 70;
+inline void writeSigmaPlot(const std::string& file,
+                           const std::string& title,
+                           const std::vector<SigmaSeries>& series) {
+  namespace svg = sylva_examples::svg;
   const char* labels[3] = {"x error [m]", "y error [m]", "heading error [deg]"};
+  const double left = 90, width = 900, panel = 200, gap = 40;
   double t_max = 0.0;
   for (const auto& s : series)
     if (!s.time_s.empty()) t_max = std::max(t_max, s.time_s.back());
   if (!(t_max > 0.0)) t_max = 1.0;
-  std::ostringstream svg;
-  const double height = top + 3 * panel + 2 * gap + 70;
-  svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << fmt(left + width + 200, 0) << "\" height=\""
-      << fmt(height, 0) << "\" font-family=\"DejaVu Sans, Helvetica, Arial, sans-serif\">\n";
-  svg << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
-  svg << "<text x=\"" << fmt(left) << "\" y=\"30\" font-size=\"18\" font-weight=\"bold\">" << title << "</text>\n";
-  svg << "<text x=\"" << fmt(left) << "\" y=\"52\" font-size=\"13\" fill=\"#333\">solid: estimate - truth; "
-                                      "dashed: +-3 sigma of the filter's pose covariance</text>\n";
+
+  svg::Document doc(0, 0, 1);
+  const double top =
+      svg::header(doc,
+                  left,
+                  title,
+                  {"solid: estimate - truth; dashed: +-3 sigma of the filter's pose covariance"}) +
+      16;
   for (int c = 0; c < 3; ++c) {
-    const double y0 = top + c * (panel + gap);
     double a_max = 1e-9;
     for (const auto& s : series)
       for (std::size_t k = 0; k < s.sigma[c].size(); ++k)
         a_max = std::max({a_max, 3.0 * s.sigma[c][k], std::abs(s.error[c][k])});
     a_max *= 1.1;
-    auto px = [&](double t) { return left + width * t / t_max; };
-    auto py = [&](double v) { return y0 + panel * (0.5 - 0.5 * v / a_max); };
-    svg << "<rect x=\"" << fmt(left) << "\" y=\"" << fmt(y0) << "\" width=\"" << fmt(width) << "\" height=\""
-        << fmt(panel) << "\" fill=\"none\" stroke=\"#888\"/>\n";
-    svg << "<line x1=\"" << fmt(left) << "\" y1=\"" << fmt(py(0)) << "\" x2=\"" << fmt(left + width) << "\" y2=\""
-        << fmt(py(0)) << "\" stroke=\"#ccc\"/>\n";
-    for (double v : {-a_max / 1.1, a_max / 1.1})
-      svg << "<text x=\"" << fmt(left - 6) << "\" y=\"" << fmt(py(v) + 4) << "\" font-size=\"11\" text-anchor=\"end\">"
-          << fmt(v, c == 2 ? 2 : 3) << "</text>\n";
-    svg << "<text transform=\"rotate(-90 " << fmt(left - 55) << " " << fmt(y0 + panel / 2) << ")\" x=\""
-        << fmt(left - 55) << "\" y=\"" << fmt(y0 + panel / 2) << "\" font-size=\"13\" text-anchor=\"middle\">"
-        << labels[c] << "</text>\n";
+    const svg::Frame f =
+        svg::chartFrame({0.0, -a_max, t_max, a_max}, left, top + c * (panel + gap), width, panel);
+    svg::Axes axes{c == 2 ? "time [s]" : "", labels[c]};
+    axes.x_numbers = c == 2;
+    svg::axes(doc, f, axes);
+    doc.line(f.left, f.py(0.0), f.right(), f.py(0.0), "stroke=\"#aaa\"");
     for (const auto& s : series) {
-      auto line = [&](auto value, const std::string& style) {
-        svg << "<polyline fill=\"none\" stroke=\"" << s.colour << "\" " << style << " points=\"";
-        for (std::size_t k = 0; k < s.time_s.size(); ++k) svg << fmt(px(s.time_s[k]), 1) << "," << fmt(py(value(k)), 1) << " ";
-        svg << "\"/>\n";
+      const auto curve = [&](double sign, bool bound) {
+        std::vector<svg::Point> points;
+        for (std::size_t k = 0; k < s.time_s.size(); ++k)
+          points.emplace_back(s.time_s[k], bound ? sign * 3.0 * s.sigma[c][k] : s.error[c][k]);
+        return points;
       };
-      line([&](std::size_t k) { return s.error[c][k]; }, "stroke-width=\"1.3\"");
-      line([&](std::size_t k) { return 3.0 * s.sigma[c][k]; }, "stroke-width=\"1\" stroke-dasharray=\"5 3\"");
-      line([&](std::size_t k) { return -3.0 * s.sigma[c][k]; }, "stroke-width=\"1\" stroke-dasharray=\"5 3\"");
+      const std::string stroke = "stroke=\"" + s.colour + "\"";
+      doc.polyline(f, curve(1.0, false), stroke + " stroke-width=\"1.3\"");
+      for (const double sign : {1.0, -1.0})
+        doc.polyline(f, curve(sign, true), stroke + " stroke-width=\"1\" stroke-dasharray=\"5 3\"");
     }
   }
-  const double yt = top + 3 * panel + 2 * gap;
-  for (int i = 0; i <= 5; ++i) {
-    const double t = t_max * i / 5.0;
-    svg << "<text x=\"" << fmt(left + width * i / 5.0) << "\" y=\"" << fmt(yt + 18) << "\" font-size=\"11\" text-anchor=\"middle\">"
-        << fmt(t, 0) << "</text>\n";
-  }
-  svg << "<text x=\"" << fmt(left + width / 2) << "\" y=\"" << fmt(yt + 40) << "\" font-size=\"13\" text-anchor=\"middle\">time [s]</text>\n";
-  for (std::size_t i = 0; i < series.size(); ++i) {
-    const double y = top + 20 + 22.0 * static_cast<double>(i);
-    svg << "<line x1=\"" << fmt(left + width + 15) << "\" y1=\"" << fmt(y) << "\" x2=\"" << fmt(left + width + 45)
-        << "\" y2=\"" << fmt(y) << "\" stroke=\"" << series[i].colour << "\" stroke-width=\"2\"/>\n";
-    svg << "<text x=\"" << fmt(left + width + 50) << "\" y=\"" << fmt(y + 4) << "\" font-size=\"13\">" << series[i].name
-        << "</text>\n";
-  }
-  svg << "</svg>\n";
-  std::ofstream out(file);
-  if (!out) sylva::fail(sylva::ErrorCode::kInvalidArgument, "cannot write '" + file + "'");
-  out << svg.str();
+  std::vector<svg::LegendEntry> legend;
+  for (const auto& s : series)
+    legend.push_back({svg::swatch::line("stroke=\"" + s.colour + "\" stroke-width=\"2\""), s.name});
+  svg::legend(doc, left + width + 15, top + 10, legend);
+  doc.resize(left + width + 230, top + 3 * panel + 2 * gap + 50);
+  doc.write(file);
 }
 
 }  // namespace laser_camera_slam
