@@ -364,6 +364,32 @@ def victoria_park_figures(out):
     }
 
 
+def forest_association_figures(out):
+    """docs/slam.md: forest_slam's association without ids (--association nn) against the run
+    with the simulator's ids, per forest seed, for the pipeline with the tree-width sensor."""
+    import statistics
+    seeds = sorted({int(k.split("_")[1]) for k in out})
+    rows, correct, el_ratio, et_ratio = [], [], [], []
+    for seed in seeds:
+        ids, nn = out[f"ids_{seed}"]["with_width"], out[f"nn_{seed}"]["with_width"]
+        a = nn["association"]
+        ratio = lambda key: (nn[key] / ids[key]) if nn[key] is not None and ids[key] else float("inf")
+        correct.append(a["correct_fraction"])
+        el_ratio.append(ratio("landmark_error"))
+        et_ratio.append(ratio("trajectory_error"))
+        rows.append([seed, a["sightings"], fixed(100 * a["correct_fraction"], 1), a["paired_wrong"], a["duplicates"],
+                     a["ambiguous"], fixed(el_ratio[-1], 2), fixed(et_ratio[-1], 2)])
+    return {
+        "seeds": f"{seeds[0]}-{seeds[-1]}",
+        "table": table(["forest seed", "sightings", "taken right (%)", "paired with another tree", "duplicate trees",
+                        "ambiguous", "e_l nn / ids", "e_t nn / ids"], rows),
+        "median_correct_pct": fixed(100 * statistics.median(correct), 1),
+        "min_correct_pct": fixed(100 * min(correct), 1),
+        "median_el_ratio": fixed(statistics.median(el_ratio), 2),
+        "median_et_ratio": fixed(statistics.median(et_ratio), 2),
+    }
+
+
 SOURCES = {
     "range-bearing-slam": {
         "file": "docs/figures/range-bearing-slam.figures.json",
@@ -407,6 +433,17 @@ SOURCES = {
         "quick": {f"seed_{k}": f"{{bin}}/moving_objects/moving_objects --seed {k} --slam-seeds 2 --json --svg-prefix ''"
                   for k in range(1, 3)},
         "figures": moving_objects_seed_figures,
+    },
+    "forest-association": {
+        "file": "docs/figures/forest-association.figures.json",
+        "runs": {**{f"ids_{k}": f"{{bin}}/forest_slam/forest_slam --seed {k} --json --svg-prefix ''" for k in range(1, 11)},
+                 **{f"nn_{k}": f"{{bin}}/forest_slam/forest_slam --seed {k} --association nn --json --svg-prefix ''"
+                    for k in range(1, 11)}},
+        "quick": {**{f"ids_{k}": f"{{bin}}/forest_slam/forest_slam --seed {k} --frames 200 --json --svg-prefix ''"
+                     for k in range(1, 3)},
+                  **{f"nn_{k}": f"{{bin}}/forest_slam/forest_slam --seed {k} --frames 200 --association nn --json "
+                                f"--svg-prefix ''" for k in range(1, 3)}},
+        "figures": forest_association_figures,
     },
     "victoria-park": {
         "file": "docs/examples/victoria-park.figures.json",

@@ -47,7 +47,7 @@ if [[ -z "$bin_dir" ]]; then
   cmake -S "$repo" -B "$build" -DCMAKE_BUILD_TYPE=Release \
     ${SYLVA_CXX:+-DCMAKE_CXX_COMPILER="$SYLVA_CXX"} \
     -DSYLVA_BUILD_TESTS=OFF -DSYLVA_BUILD_BENCHMARKS=OFF -DSYLVA_BUILD_EXAMPLES=ON >&2
-  targets=(--target range_bearing_slam parking laser_camera_slam moving_objects)
+  targets=(--target range_bearing_slam parking laser_camera_slam moving_objects forest_slam)
   ((pages)) && targets=()  # forest_seeds runs forest_slam from this build too
   cmake --build "$build" -j "${SYLVA_JOBS:-$(nproc)}" "${targets[@]}" >&2
   bin_dir="$build/examples"

@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <unordered_map>
+#include <unordered_set>
 
 namespace forest_slam {
 
@@ -51,6 +53,33 @@ template PoseNees cameraPoseNees<13>(const Vec<13>&, const Mat<13, 13>&, const V
 
 namespace {
 
+/// Adds one frame's association to the counts of `result` (see RunResult), and names the
+/// landmarks it started after their sightings' trees.
+void scoreAssociation(const std::vector<sylva::sim::TreeObservation>& observations,
+                      const FrameReport& report,
+                      std::unordered_map<Id, Id>& tree_of,
+                      RunResult& result) {
+  std::unordered_set<Id> mapped;  // trees with a landmark before this frame's new ones
+  for (const auto& entry : tree_of) mapped.insert(entry.second);
+  for (std::size_t i = 0; i < observations.size(); ++i) {
+    ++result.sightings;
+    const Id landmark = report.landmark_of[i];
+    const Id tree = observations[i].id;
+    if (landmark < 0) {
+      ++result.ambiguous;
+      continue;
+    }
+    const auto it = tree_of.find(landmark);
+    if (it != tree_of.end()) {
+      ++(it->second == tree ? result.paired_correct : result.paired_wrong);
+      continue;
+    }
+    tree_of.emplace(landmark, tree);
+    ++result.new_trees;
+    if (!mapped.insert(tree).second) ++result.duplicates;
+  }
+}
+
 template <typename Slam>
 RunResult runWith(const sylva::sim::ForestScenario& scenario,
                   const TreeSlamOptions& options,
@@ -65,6 +94,13 @@ RunResult runWith(const sylva::sim::ForestScenario& scenario,
 
   std::vector<Vec<3>> estimated_path;
   estimated_path.reserve(static_cast<std::size_t>(n_frames));
+  std::unordered_map<Id, Id> tree_of;  // landmark -> the tree of the sighting that started it
+  // The landmarks in Euclidean form, named by the tree they stand for (the evaluation's ids).
+  const auto euclideanTrees = [&](const auto& filter) {
+    std::vector<std::pair<Id, Vec<3>>> out = euclideanLandmarks(filter);
+    for (auto& entry : out) entry.first = tree_of.at(entry.first);
+    return out;
+  };
   std::vector<std::pair<Id, Vec<3>>> end_of_lap1;
   const int last_lap = frames[n_frames - 1].lap;
   const auto start = std::chrono::steady_clock::now();
@@ -81,6 +117,7 @@ RunResult runWith(const sylva::sim::ForestScenario& scenario,
     if (options.unbiased_point_uv) noise_free = noiseFreeOf(scenario.observations[k]);
     const FrameReport report =
         slam.processFrame(dt, sightingsOf(scenario.observations[k]), needs_truth ? &frame_truth : nullptr);
+    scoreAssociation(scenario.observations[k], report, tree_of, result);
     result.rejected += report.rejected;
     result.hypotheses += report.hypotheses;
     for (std::size_t t = 0; t < 4; ++t) result.nis[t].merge(report.nis[t]);
@@ -92,7 +129,7 @@ RunResult runWith(const sylva::sim::ForestScenario& scenario,
       result.orientation_nees.push_back(n.orientation);
     }
     const bool lap1_ends = frames[k].lap == 0 && (k + 1 == n_frames || frames[k + 1].lap > 0);
-    if (lap1_ends) end_of_lap1 = euclideanLandmarks(slam.filter());
+    if (lap1_ends) end_of_lap1 = euclideanTrees(slam.filter());
   }
   result.runtime_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -103,7 +140,7 @@ RunResult runWith(const sylva::sim::ForestScenario& scenario,
   bool aligned = false;
   try {
     result.landmark_error = alignMap(end_of_lap1, scenario).second;
-    final_alignment = alignMap(euclideanLandmarks(ekf), scenario).first;
+    final_alignment = alignMap(euclideanTrees(ekf), scenario).first;
     aligned = true;
     std::vector<Vec<3>> est, truth;
     for (int k = 0; k < n_frames; ++k) {
@@ -123,7 +160,7 @@ RunResult runWith(const sylva::sim::ForestScenario& scenario,
     if (!ekf.template holds<sylva::TreeXYZR>(s.id)) continue;
     const double r_est =
         ekf.template landmarkMean<sylva::TreeXYZR>(s.id)[3] * (aligned ? final_alignment.scale : 1.0);
-    const double r_true = scenario.tree(s.id).radius_m;
+    const double r_true = scenario.tree(tree_of.at(s.id)).radius_m;
     sum_sq += (r_est - r_true) * (r_est - r_true);
     sum_true += r_true;
     ++result.xyzr_trees;

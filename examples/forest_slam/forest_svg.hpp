@@ -35,6 +35,11 @@ inline void writeForestSvg(const std::string& path, const ForestSvgData& data) {
   svg::Box world;
   for (const auto& c : data.true_trees) world.include(c.centre, c.radius_m);
   for (const auto& p : data.true_path) world.include(p);
+  if (world.empty()) {  // no truth (a run on recorded detections): frame the estimates
+    for (const auto& c : data.estimated_trees) world.include(c.centre, c.radius_m);
+    for (const auto& p : data.estimated_points) world.include(p);
+    for (const auto& p : data.estimated_path) world.include(p);
+  }
   if (world.empty()) world = svg::Box{-1.0, -1.0, 1.0, 1.0};
   world = world.grown(2.0);
 

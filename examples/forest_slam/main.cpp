@@ -10,9 +10,15 @@
 // base ellipse is inside the 640 x 480 image (and, with occlusion on, that no nearer trunk
 // overlaps in u), [u, v, w]: the centre of the base ellipse and its width in pixels, with
 // Gaussian noise (--pixel-noise on u and v, --width-noise on w). Tree ids are the data
-// association.
+// association by default; with --association nn the filter ignores them (gated nearest
+// neighbour on each tree's own model, sylva::slam::TrunkAssociation) and they only score it.
 //
-// The filter (examples/forest_slam/monocular_tree_slam.hpp): Ekf<ConstantVelocity3D,
+// Recorded detections: --write-recording PREFIX writes the simulated detections, the camera and
+// its initial state as CSV (recording.hpp); --detections, --camera and --initial-state run the
+// three pipelines on such files (a trunk detector's output) and write their estimates
+// (--csv-prefix) and maps (--svg-prefix), with no truth to score them.
+//
+// The filter (sylva::slam::MonocularTreeSlam, include/sylva/slam/monocular_tree_slam.hpp): Ekf<ConstantVelocity3D,
 // InverseDepth, Point3, TreeXYZR> starting at the true first camera state (the map frame),
 // with the true initial velocity known to 0.1 m/s. Trees start as inverse-depth points
 // (Civera et al. 2008), become XYZ when their linearity index drops below 0.1 and, in the
@@ -57,6 +63,7 @@
 #include "forest_run.hpp"
 #include "forest_svg.hpp"
 #include "monocular_tree_slam.hpp"
+#include "recording.hpp"
 
 namespace {
 
@@ -85,10 +92,18 @@ RunResult runSlam(const sylva::sim::ForestScenario& scenario,
                   TreeSlamOptions options,
                   const PipelineRun& which,
                   int max_frames,
-                  const std::string& svg_path) {
+                  const std::string& svg_path,
+                  const std::string& csv_prefix) {
   options.pipeline = which.pipeline;
   forest_slam::RunTrace trace;
   const RunResult result = forest_slam::runForestSlam(scenario, options, max_frames, 0, &trace);
+  if (!csv_prefix.empty()) {
+    forest_slam::Estimate e;
+    e.path = trace.estimated_path;
+    for (std::size_t k = 0; k < e.path.size(); ++k) e.t_s.push_back(scenario.frames[k].t_s);
+    e.trees = trace.final_landmarks;
+    forest_slam::writeEstimateCsv(csv_prefix + "_" + which.key, e);
+  }
   if (!svg_path.empty()) {
     const auto& frames = scenario.frames;
     const int n_frames = static_cast<int>(trace.estimated_path.size());
@@ -138,6 +153,63 @@ nlohmann::json toJson(const RunResult& r) {
   j["reanchored_frames"] = r.hypotheses;
   if (!r.failure.empty()) j["failure"] = r.failure;
   return j;
+}
+
+/// The association counts of a run without ids (scored with the simulator's ids).
+nlohmann::json associationJson(const RunResult& r) {
+  return {{"sightings", r.sightings},         {"paired_correct", r.paired_correct},
+          {"paired_wrong", r.paired_wrong},   {"new_trees", r.new_trees},
+          {"duplicates", r.duplicates},       {"ambiguous", r.ambiguous},
+          {"correct_fraction", r.associationCorrectFraction()}};
+}
+
+/// The three pipelines on a recording (recording.hpp): CSV of each estimate at csv_prefix,
+/// an SVG of each (no truth to draw), and a summary on stdout.
+int runOnRecording(const forest_slam::Recording& recording, const TreeSlamOptions& slam_options, int max_frames,
+                   const std::string& csv_prefix, const std::string& svg_prefix, bool json) {
+  nlohmann::json out;
+  std::size_t detections = 0;
+  for (const auto& f : recording.frames) detections += f.detections.size();
+  out["frames"] = recording.frames.size();
+  out["detections"] = detections;
+  out["association"] = sylva::slam::associationName(slam_options.association);
+  for (const PipelineRun& p : kPipelines) {
+    TreeSlamOptions options = slam_options;
+    options.pipeline = p.pipeline;
+    forest_slam::FrameReport totals;
+    const forest_slam::Estimate e = forest_slam::runRecording(recording, options, max_frames, totals);
+    if (!csv_prefix.empty()) forest_slam::writeEstimateCsv(csv_prefix + "_" + p.key, e);
+    if (!svg_prefix.empty()) {
+      forest_slam::ForestSvgData svg;
+      svg.title = std::string("forest_slam on recorded detections, ") + p.title;
+      svg.subtitle_lines.push_back("the filter's map frame (the first camera pose), unaligned: no truth to align to");
+      for (const Vec<3>& q : e.path) svg.estimated_path.push_back(q.head<2>());
+      for (const auto& [q, radius] : e.trees) {
+        if (std::isfinite(radius))
+          svg.estimated_trees.push_back({q.head<2>(), radius});
+        else
+          svg.estimated_points.push_back(q.head<2>());
+      }
+      forest_slam::writeForestSvg(svg_prefix + "_" + p.key + ".svg", svg);
+    }
+    out[p.key] = {{"fused", totals.fused},        {"added", totals.added},
+                  {"ambiguous", totals.ambiguous}, {"rejected", totals.rejected},
+                  {"trees_in_euclidean_form", e.trees.size()}};
+  }
+  if (json) {
+    std::cout << out.dump(2) << "\n";
+  } else {
+    std::printf("forest_slam on a recording: %zu frames, %zu detections, association by %s\n", recording.frames.size(),
+                detections, out["association"].get<std::string>().c_str());
+    for (const PipelineRun& p : kPipelines) {
+      const auto& r = out[p.key];
+      std::printf("  %-18s fused %6d, trees added %4d, ambiguous %4d, refused %4d, mapped in Euclidean form %4d\n", p.title,
+                  r["fused"].get<int>(), r["added"].get<int>(), r["ambiguous"].get<int>(), r["rejected"].get<int>(),
+                  r["trees_in_euclidean_form"].get<int>());
+    }
+    if (!csv_prefix.empty()) std::printf("estimates: %s_<pipeline>_trajectory.csv and _map.csv\n", csv_prefix.c_str());
+  }
+  return 0;
 }
 
 }  // namespace
@@ -224,15 +296,53 @@ int main(int argc, char** argv) {
   app.add_option("--svg-prefix", svg_prefix, "write PREFIX_with_width.svg, PREFIX_without_width.svg and PREFIX_width_first_sight.svg (empty: none)")
       ->capture_default_str();
   app.add_option("--forest-svg", forest_svg, "also write the generated forest and path (top view) to this SVG");
+  const std::map<std::string, sylva::slam::TrunkAssociation> associations{
+      {"ids", sylva::slam::TrunkAssociation::kKnownIds}, {"nn", sylva::slam::TrunkAssociation::kNearestNeighbor}};
+  app.add_option("--association", slam_options.association,
+                 "ids: the detections' ids name the trees; nn: ids ignored, gated nearest neighbour on each tree's "
+                 "own model (TrunkAssociation); with the simulator, the ids still score the result")
+      ->transform(CLI::CheckedTransformer(associations, CLI::ignore_case))
+      ->default_str("ids");
+  app.add_option("--association-gate", slam_options.association_gate_probability,
+                 "--association nn: chi-square probability of the gate of a pairing")
+      ->capture_default_str()
+      ->check(CLI::Range(0.5, 0.9999999));
+  app.add_option("--new-tree-gate", slam_options.new_tree_probability,
+                 "--association nn: a sighting that pairs with nothing starts a tree only when its NIS to every tree "
+                 "exceeds this chi-square quantile")
+      ->capture_default_str()
+      ->check(CLI::Range(0.5, 0.9999999));
+  std::string csv_prefix, write_recording, detections_file, camera_file, initial_state_file;
+  app.add_option("--csv-prefix", csv_prefix,
+                 "write each pipeline's estimate: PREFIX_<pipeline>_trajectory.csv and PREFIX_<pipeline>_map.csv");
+  app.add_option("--write-recording", write_recording,
+                 "write the simulated detections as a recording: PREFIX_detections.csv, PREFIX_camera.csv, "
+                 "PREFIX_initial_state.csv (examples/forest_slam/recording.hpp)");
+  app.add_option("--detections", detections_file,
+                 "run on recorded detections instead of the simulator (CSV: time_s, u_px, v_px, w_px[, id]); needs "
+                 "--camera and --initial-state");
+  app.add_option("--camera", camera_file, "with --detections: the intrinsics (CSV: fx, fy, cx, cy, width, height)");
+  app.add_option("--initial-state", initial_state_file,
+                 "with --detections: the camera's state at the first frame (CSV, 13 values; it gives the map its "
+                 "frame and scale)");
   CLI11_PARSE(app, argc, argv);
   scenario_options.observer.occlusion = !no_occlusion;
   scenario_options.trajectory.dt_s = 1.0 / frame_rate_hz;
 
   try {
+    if (!detections_file.empty()) {
+      if (camera_file.empty() || initial_state_file.empty())
+        sylva::fail(sylva::ErrorCode::kInvalidArgument, "--detections needs --camera and --initial-state");
+      slam_options.pixel_sigma_px = pixel_noise_scale * std::max(scenario_options.observer.sigma_px, 0.1);
+      slam_options.width_sigma_px = width_noise_scale * std::max(scenario_options.observer.sigma_width_px, 0.1);
+      return runOnRecording(forest_slam::readRecording(detections_file, camera_file, initial_state_file), slam_options,
+                            max_frames, csv_prefix, svg_prefix, json);
+    }
     slam_options.camera = scenario_options.camera;
     slam_options.pixel_sigma_px = pixel_noise_scale * std::max(scenario_options.observer.sigma_px, 0.1);
     slam_options.width_sigma_px = width_noise_scale * std::max(scenario_options.observer.sigma_width_px, 0.1);
     const sylva::sim::ForestScenario scenario = sylva::sim::makeForestScenario(scenario_options, seed);
+    if (!write_recording.empty()) forest_slam::writeRecording(write_recording, scenario);
     if (!forest_svg.empty()) {
       forest_slam::ForestSvgData svg;
       svg.title = "forest_slam: the simulated forest and the camera's path (seed " + std::to_string(seed) + ")";
@@ -244,7 +354,8 @@ int main(int argc, char** argv) {
     }
     const auto svg_for = [&](const char* which) { return svg_prefix.empty() ? std::string() : svg_prefix + "_" + which + ".svg"; };
     std::vector<RunResult> results;
-    for (const PipelineRun& p : kPipelines) results.push_back(runSlam(scenario, slam_options, p, max_frames, svg_for(p.key)));
+    for (const PipelineRun& p : kPipelines)
+      results.push_back(runSlam(scenario, slam_options, p, max_frames, svg_for(p.key), csv_prefix));
 
     std::size_t observations = 0;
     for (const auto& o : scenario.observations) observations += o.size();
@@ -254,7 +365,11 @@ int main(int argc, char** argv) {
       out["trees"] = scenario.trees.size();
       out["frames"] = max_frames > 0 ? std::min<std::size_t>(max_frames, scenario.frames.size()) : scenario.frames.size();
       out["mean_trees_per_frame"] = static_cast<double>(observations) / scenario.frames.size();
-      for (std::size_t i = 0; i < results.size(); ++i) out[kPipelines[i].key] = toJson(results[i]);
+      for (std::size_t i = 0; i < results.size(); ++i) {
+        out[kPipelines[i].key] = toJson(results[i]);
+        if (slam_options.association != sylva::slam::TrunkAssociation::kKnownIds)
+          out[kPipelines[i].key]["association"] = associationJson(results[i]);
+      }
       std::cout << out.dump(2) << "\n";
     } else {
       std::printf("forest_slam: %zu trees, %zu frames, %.1f trees measured per frame (seed %llu, occlusion %s)\n\n",
@@ -284,6 +399,12 @@ int main(int argc, char** argv) {
       row("trees XYZ at the end", [](const RunResult& r) { return double(r.by_type[1]); }, "%.0f");
       row("trees inverse depth (or IDR) at end", [](const RunResult& r) { return double(r.by_type[0] + r.by_type[3]); }, "%.0f");
       row("observations refused", [](const RunResult& r) { return double(r.rejected); }, "%.0f");
+      if (slam_options.association != sylva::slam::TrunkAssociation::kKnownIds) {
+        row("association: sightings taken right (%)", [](const RunResult& r) { return 100.0 * r.associationCorrectFraction(); }, "%.2f");
+        row("association: paired with another tree", [](const RunResult& r) { return double(r.paired_wrong); }, "%.0f");
+        row("association: duplicate trees", [](const RunResult& r) { return double(r.duplicates); }, "%.0f");
+        row("association: ambiguous, dropped", [](const RunResult& r) { return double(r.ambiguous); }, "%.0f");
+      }
       row("run time (s)", [](const RunResult& r) { return r.runtime_s; }, "%.2f");
       if (!svg_prefix.empty()) {
         std::printf("\nmaps:");

@@ -383,7 +383,7 @@ class FrontEnd {
         if (known_gate_ || options_.report_nis) {
           // As Ekf::innovation forms it, from the one linearization the update reuses.
           Innovation<kDim> innovation;
-          innovation.nu = detail::residual(model_, reading.z, lin.z_hat);
+          innovation.nu = sylva::detail::residual(model_, reading.z, lin.z_hat);
           innovation.S = ekf.crossCovariance(lin, lin) + reading.gateNoise().covariance();
           innovation.S = (0.5 * (innovation.S + innovation.S.transpose())).eval();
           r.nis = innovation.nis();
@@ -430,7 +430,7 @@ class FrontEnd {
       } else {
         for (const Gaussian<kDim>& g : gate_noises_) R.push_back(g.covariance());
       }
-      table_ = detail::buildCompatibilityTable(ekf, model_, z_, std::move(R), candidate_ids_,
+      table_ = sylva::detail::buildCompatibilityTable(ekf, model_, z_, std::move(R), candidate_ids_,
                                                options_.gate_probability, "slam::FrontEnd");
       pairing = options_.association == Association::kJcbb ? associateJcbb(ekf, table_)
                                                            : associateNearestNeighbor(table_);
@@ -525,7 +525,7 @@ class FrontEnd {
           Mat<Landmark::kDim, Filter::kRobotStateDim> J_l_x;
           Mat<Landmark::kDim, kDim> J_l_z;
           const Vec<Landmark::kDim> l =
-              detail::initializeOn<typename Filter::Robot>(inverse_, ekf.robotMean(), readings[i].z, J_l_x, J_l_z);
+              sylva::detail::initializeOn<typename Filter::Robot>(inverse_, ekf.robotMean(), readings[i].z, J_l_x, J_l_z);
           position = l.template segment<2>(Landmark::kPlanarPosition);
         } catch (const Error& e) {
           refuse(i, e.code(), e.what());

@@ -47,12 +47,14 @@
 // bench/forest_slam.cpp).
 #include <algorithm>
 #include <array>
+#include <string>
 #include <limits>
 #include <cstddef>
 #include <cmath>
 #include <cstdint>
 #include <type_traits>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include "sylva/consistency/monte_carlo.hpp"
@@ -105,6 +107,21 @@ inline const char* pipelineName(WidthPipeline p) {
   return "?";
 }
 
+/// How the sightings of a frame find their trees.
+enum class TrunkAssociation {
+  kKnownIds,  ///< TrunkSighting::id names the tree (a tracker's ids, or a simulator's)
+  /// The ids are ignored: each sighting pairs with the mapped tree nearest to it in NIS,
+  /// measured through that tree's own model ([u, v] for points, [u, v, w] for trees with a
+  /// radius) at the predicted state, within a chi-square gate; each tree takes at most one
+  /// sighting (greedy by NIS over its gate). A sighting that pairs with no tree starts one only
+  /// when its NIS to every tree exceeds chi2(dim, new_tree_probability); otherwise it is
+  /// ambiguous and dropped.
+  kNearestNeighbor,
+};
+inline const char* associationName(TrunkAssociation a) {
+  return a == TrunkAssociation::kKnownIds ? "ids" : "nn";
+}
+
 /// The filter's settings. The noise defaults are the "gains" (thesis Sec. 4.2) selected for
 /// the default forest with 1 px simulated noise: see docs/forest-slam-results.md for how.
 struct TreeSlamOptions {
@@ -138,6 +155,9 @@ struct TreeSlamOptions {
   /// centre plus the frame's noise, instead of the centre of the base ellipse (which the
   /// point models do not predict: their model error). Needs `FrameTruth`.
   bool unbiased_point_uv = false;
+  TrunkAssociation association = TrunkAssociation::kKnownIds;
+  double association_gate_probability = 0.999;  ///< kNearestNeighbor: gate of a pairing
+  double new_tree_probability = 0.99999;        ///< kNearestNeighbor: the new-tree test
 };
 
 /// What a simulator knows about one frame, for the diagnostics of `TreeSlamOptions`
@@ -159,6 +179,10 @@ struct FrameReport {
   int to_tree = 0;    ///< XYZ -> XYZ-R or IDR -> XYZ-R conversions
   int rejected = 0;   ///< observations or conversions refused by the filter, a model or the gate
   int hypotheses = 0; ///< 1 when the frame was re-anchored on a one-point hypothesis
+  int ambiguous = 0;  ///< kNearestNeighbor: sightings dropped, neither paired nor clearly new
+  /// Per sighting, in the order given: the landmark it was taken as (its own id with known
+  /// ids; the paired or new tree's id without), or -1 when it was dropped as ambiguous.
+  std::vector<Id> landmark_of;
   /// NIS of the observations of mapped trees at the predicted state (before any is fused), by
   /// the landmark's parametrization [inverse depth, XYZ, XYZ-R, IDR] (2 dof for the point
   /// models, 3 for the width models; unpredictable observations left out).
@@ -286,6 +310,15 @@ class BasicMonocularTreeSlam {
   /// Hands the true state of every landmark, in its parametrization, to the filter
   /// (LinearizationPoint::kIdeal).
   void setIdealLandmarks(const FrameTruth& truth);
+  /// One nearest-neighbour association of a frame's sightings against one filter state.
+  struct NearestPairing {
+    std::vector<Id> tree;     ///< per sighting: the paired tree, -1 if none
+    std::vector<char> clear;  ///< per sighting: NIS to every tree beyond the new-tree gate
+  };
+  NearestPairing pairNearest(const Filter& ekf, const std::vector<Seen>& seen) const;
+  /// kNearestNeighbor: sets the id of every sighting in `seen` (a mapped tree, a new tree, or
+  /// -1 for an ambiguous one) from the predicted state (see TrunkAssociation).
+  void associate(std::vector<Seen>& seen, FrameReport& report);
 
   TreeSlamOptions options_;
   /// The true camera position when each tree was first seen: the true anchor of its inverse
@@ -309,6 +342,8 @@ class BasicMonocularTreeSlam {
   std::array<double, 4> gate_;  ///< chi-square gate by measurement dimension (2 and 3 used)
   std::vector<Seen> fresh_, mapped_, accepted_, refused_, second_chance_;
   std::vector<Candidate> candidates_;
+  std::vector<Seen> sightings_;
+  Id next_tree_id_ = 0;  ///< kNearestNeighbor: the next new tree's id (mapped ids skipped)
   FrameProfile* profile_ = nullptr;
 };
 

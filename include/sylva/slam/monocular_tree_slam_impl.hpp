@@ -7,6 +7,8 @@
 #include <chrono>
 #include <cmath>
 #include <optional>
+#include <tuple>
+#include <vector>
 #include <type_traits>
 
 #include "sylva/consistency/chi_square.hpp"
@@ -86,8 +88,7 @@ FrameReport BasicMonocularTreeSlam<Camera>::processFrame(double dt,
     }
   }
 
-  fresh_.clear();
-  mapped_.clear();
+  sightings_.clear();
   for (std::size_t i = 0; i < observations.size(); ++i) {
     const TrunkSighting& o = observations[i];
     Vec<2> uv = o.z.head<2>();
@@ -96,7 +97,14 @@ FrameReport BasicMonocularTreeSlam<Camera>::processFrame(double dt,
       const Vec<3> base = (*truth->trees)[static_cast<std::size_t>(o.id)].head<3>();
       uv += xyz_point_(ConstantVelocity3D::pose(truth->camera), base) - (*truth->noise_free)[i].head<2>();
     }
-    (ekf_.contains(o.id) ? mapped_ : fresh_).push_back({o.id, o.z, uv});
+    sightings_.push_back({o.id, o.z, uv});
+  }
+  if (options_.association == TrunkAssociation::kNearestNeighbor) associate(sightings_, report);
+  fresh_.clear();
+  mapped_.clear();
+  for (const Seen& s : sightings_) {
+    report.landmark_of.push_back(s.id);
+    if (s.id >= 0) (ekf_.contains(s.id) ? mapped_ : fresh_).push_back(s);
   }
   {
     // Gating is what fuseMapped spends beyond the updates, which fuse() books themselves.
@@ -142,6 +150,90 @@ FrameReport BasicMonocularTreeSlam<Camera>::processFrame(double dt,
   }
   if (ideal) setIdealLandmarks(*truth);  // for the landmarks added or converted above
   return report;
+}
+
+template <typename Camera>
+typename BasicMonocularTreeSlam<Camera>::NearestPairing BasicMonocularTreeSlam<Camera>::pairNearest(
+    const Filter& ekf, const std::vector<Seen>& seen) const {
+  struct Candidate {
+    double score;  ///< NIS over the pairing gate of its dimension: < 1 passes
+    std::size_t sighting;
+    std::size_t tree;
+  };
+  std::array<double, 4> pair_gate{}, new_gate{};
+  for (int dim = 2; dim <= 3; ++dim) {
+    pair_gate[dim] = chiSquareGate(dim, options_.association_gate_probability);
+    new_gate[dim] = chiSquareGate(dim, options_.new_tree_probability);
+  }
+  std::vector<Candidate> candidates;
+  std::vector<Id> trees;
+  std::vector<double> closest(seen.size(), kUnpredictable);  // smallest NIS over the new-tree gate
+  // Each tree is linearized once, through its own model, and its S factored once.
+  for (const LandmarkSlot& slot : ekf.slots()) {
+    ekf.visit(slot.id, [&](auto type) {
+      const auto& model = modelFor(type);
+      using Model = std::decay_t<decltype(model)>;
+      constexpr int M = Model::kDim;
+      Linearization<Model, Filter::kRobotDim> lin;
+      try {
+        lin = ekf.linearize(model, slot.id);
+      } catch (const Error&) {
+        return;  // behind the camera, or otherwise unpredictable
+      }
+      Mat<M, M> S = ekf.crossCovariance(lin, lin);
+      if constexpr (M == 2) {
+        S += pixel_noise_.covariance();
+      } else {
+        S += tree_noise_.covariance();
+      }
+      S = (0.5 * (S + S.transpose())).eval();
+      const Eigen::LLT<Mat<M, M>> llt(S);
+      if (llt.info() != Eigen::Success) return;
+      const std::size_t j = trees.size();
+      trees.push_back(slot.id);
+      for (std::size_t i = 0; i < seen.size(); ++i) {
+        Vec<M> z;
+        if constexpr (M == 2) {
+          z = seen[i].uv;
+        } else {
+          z = seen[i].z;
+        }
+        const double nis = llt.matrixL().solve(Vec<M>(sylva::detail::residual(model, z, lin.z_hat))).squaredNorm();
+        closest[i] = std::min(closest[i], nis / new_gate[M]);
+        if (nis < pair_gate[M]) candidates.push_back({nis / pair_gate[M], i, j});
+      }
+    });
+  }
+  std::sort(candidates.begin(), candidates.end(), [](const Candidate& a, const Candidate& b) {
+    return std::tie(a.score, a.sighting, a.tree) < std::tie(b.score, b.sighting, b.tree);
+  });
+  NearestPairing out;
+  out.tree.assign(seen.size(), -1);
+  out.clear.assign(seen.size(), 0);
+  std::vector<char> tree_taken(trees.size(), 0);
+  for (const Candidate& c : candidates) {
+    if (out.tree[c.sighting] >= 0 || tree_taken[c.tree]) continue;
+    tree_taken[c.tree] = 1;
+    out.tree[c.sighting] = trees[c.tree];
+  }
+  for (std::size_t i = 0; i < seen.size(); ++i) out.clear[i] = closest[i] > 1.0 ? 1 : 0;
+  return out;
+}
+
+template <typename Camera>
+void BasicMonocularTreeSlam<Camera>::associate(std::vector<Seen>& seen, FrameReport& report) {
+  const NearestPairing pairing = pairNearest(ekf_, seen);
+  for (std::size_t i = 0; i < seen.size(); ++i) {
+    if (pairing.tree[i] >= 0) {
+      seen[i].id = pairing.tree[i];
+    } else if (pairing.clear[i]) {
+      while (ekf_.contains(next_tree_id_)) ++next_tree_id_;
+      seen[i].id = next_tree_id_++;
+    } else {
+      seen[i].id = -1;
+      ++report.ambiguous;
+    }
+  }
 }
 
 template <typename Camera>
