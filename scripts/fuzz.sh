@@ -10,7 +10,7 @@
 #   bash scripts/fuzz.sh --seconds S        S seconds per target (with --runs: what ends first)
 #   bash scripts/fuzz.sh --jobs J           J fuzzing processes per target at a time (default 1)
 #   bash scripts/fuzz.sh --targets a,b      only these (numeric_table, utias_mrclam,
-#                                           victoria_park, leg_tracker)
+#                                           victoria_park, leg_tracker, trunk_detections)
 #   bash scripts/fuzz.sh --keep-corpus      go on from the working corpus of the last run
 #   bash scripts/fuzz.sh --no-doc           write the summary, leave docs/reliability.md alone
 #
@@ -25,7 +25,7 @@ set -euo pipefail
 
 usage() { sed -n '2,23p' "$0" | sed 's/^# \{0,1\}//'; }
 
-all_targets=(numeric_table utias_mrclam victoria_park leg_tracker)
+all_targets=(numeric_table utias_mrclam victoria_park leg_tracker trunk_detections)
 targets=("${all_targets[@]}")
 runs=""
 seconds=""
