@@ -69,17 +69,9 @@ inline Recording readRecording(const std::string& detections, const std::string&
   Recording r;
   r.frames = sylva::datasets::readTrunkDetections(detections);
   r.camera = sylva::datasets::readCameraIntrinsics(camera);
-  bool seen = false;
-  sylva::datasets::NumericTableFormat format;
-  format.min_fields = 13;
-  format.max_fields = 13;
-  format.delimiters = ",";
-  sylva::datasets::readNumericTable(initial_state, format, [&](const sylva::datasets::NumericRow& row) {
-    if (seen) row.fail("an initial-state file holds one row");
+  sylva::datasets::readSingleCsvRow(initial_state, 13, "initial-state", [&](const sylva::datasets::NumericRow& row) {
     for (int i = 0; i < 13; ++i) r.initial_state[i] = row[i];
-    seen = true;
   });
-  if (!seen) sylva::datasets::failMalformed(initial_state, 0, "no state row in the file");
   return r;
 }
 

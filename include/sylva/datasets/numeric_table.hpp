@@ -161,6 +161,24 @@ void readNumericTable(const std::string& path, const NumericTableFormat& format,
   }
 }
 
+/// Reads a file that holds exactly one data row of `fields` comma-separated numbers (comments
+/// aside) and hands it to `on_row`; throws kMalformedData naming the file (and the line) for a
+/// second row, for none, or for a row of another length.
+template <typename Callback>
+void readSingleCsvRow(const std::string& path, int fields, const char* what, Callback&& on_row) {
+  NumericTableFormat format;
+  format.min_fields = fields;
+  format.max_fields = fields;
+  format.delimiters = ",";
+  bool seen = false;
+  readNumericTable(path, format, [&](const NumericRow& row) {
+    if (seen) row.fail(std::string("a ") + what + " file holds one row");
+    on_row(row);
+    seen = true;
+  });
+  if (!seen) failMalformed(path, 0, std::string("no ") + what + " row in the file");
+}
+
 /// Checks that a row's time does not go back: throws naming the row otherwise.
 inline void requireNonDecreasing(const NumericRow& row, double previous, double time, const char* what) {
   if (time < previous) {

@@ -88,14 +88,8 @@ inline std::vector<TrunkDetectionFrame> readTrunkDetections(const std::string& p
 /// Reads a camera file (see the file comment). Throws kMalformedData unless it holds exactly
 /// one row of six fields with positive focal lengths and a positive whole image size.
 inline CameraIntrinsics readCameraIntrinsics(const std::string& path) {
-  std::optional<CameraIntrinsics> camera;
-  NumericTableFormat format;
-  format.min_fields = 6;
-  format.max_fields = 6;
-  format.delimiters = ",";
-  readNumericTable(path, format, [&](const NumericRow& row) {
-    if (camera) row.fail("a camera file holds one row");
-    CameraIntrinsics c;
+  CameraIntrinsics c;
+  readSingleCsvRow(path, 6, "camera", [&](const NumericRow& row) {
     c.fx = row[0];
     c.fy = row[1];
     c.cx = row[2];
@@ -107,10 +101,8 @@ inline CameraIntrinsics readCameraIntrinsics(const std::string& path) {
       row.fail("the image size must be positive (and at most 10^6 pixels a side)");
     c.width = static_cast<int>(width);
     c.height = static_cast<int>(height);
-    camera = c;
   });
-  if (!camera) failMalformed(path, 0, "no camera row in the file");
-  return *camera;
+  return c;
 }
 
 namespace detail {
