@@ -5,31 +5,12 @@
 //
 // Allocations are counted in the replaced global operator new (replaced_operator_new.hpp)
 // and, for Eigen's own (which go through malloc), through EIGEN_RUNTIME_NO_MALLOC: while a
-// fault is armed Eigen's malloc check fails on every heap allocation, and this file routes
-// that check to the same counter, which throws std::bad_alloc at the chosen allocation (as
-// Eigen itself does when malloc fails).
+// fault is armed Eigen's malloc check fails on every heap allocation, and
+// eigen_allocation_hook.hpp routes that check to the same counter, which throws
+// std::bad_alloc at the chosen allocation (as Eigen itself does when malloc fails).
 
-#include <atomic>
-#include <cstdio>
-#include <cstdlib>
-#include <cstring>
-#include <new>
-
+#include "eigen_allocation_hook.hpp"
 #include "replaced_operator_new.hpp"
-
-namespace {
-std::atomic<long> g_other_eigen_asserts{0};
-void onEigenAssert(const char* what) {
-  if (std::strstr(what, "heap allocation is forbidden") != nullptr) {
-    sylva_test::countAllocation();
-  } else {
-    ++g_other_eigen_asserts;
-    std::fprintf(stderr, "eigen_assert failed: %s\n", what);
-  }
-}
-}  // namespace
-#define EIGEN_RUNTIME_NO_MALLOC
-#define eigen_assert(x) ((x) ? static_cast<void>(0) : onEigenAssert(#x))
 
 #include <functional>
 #include <string>
@@ -44,6 +25,7 @@ void onEigenAssert(const char* what) {
 
 using sylva_test::g_allocations;
 using sylva_test::g_fail_at;
+using sylva_test::g_other_eigen_asserts;
 
 using namespace sylva;
 

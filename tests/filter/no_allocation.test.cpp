@@ -1,31 +1,18 @@
 // predict and update allocate nothing once the filter has seen its largest state: counted
-// with a replaced global operator new. Eigen's own allocations go through malloc, so they
-// are caught through EIGEN_RUNTIME_NO_MALLOC, whose check is an eigen_assert: this file
-// routes eigen_assert to a counter, so that the check works in Release (NDEBUG) builds too.
+// with a replaced global operator new, and Eigen's own allocations through
+// EIGEN_RUNTIME_NO_MALLOC (eigen_allocation_hook.hpp counts them as allocations too).
 
-#include <atomic>
-#include <cstdio>
-#include <cstdlib>
-#include <new>
-
-namespace {
-std::atomic<long> g_eigen_assert_failures{0};
-inline void countEigenAssertFailure(const char* what) {
-  ++g_eigen_assert_failures;
-  std::fprintf(stderr, "eigen_assert failed: %s\n", what);
-}
-}  // namespace
-#define EIGEN_RUNTIME_NO_MALLOC
-#define eigen_assert(x) ((x) ? static_cast<void>(0) : countEigenAssertFailure(#x))
+#include "eigen_allocation_hook.hpp"
+#include "replaced_operator_new.hpp"
 
 #include <sylva/monocular.hpp>
 
 #include "sylva_catch.hpp"
 
 #include "filter/monocular_rig.hpp"
-#include "replaced_operator_new.hpp"
 
 using sylva_test::g_allocations;
+using sylva_test::g_other_eigen_asserts;
 using namespace sylva;
 
 TEMPLATE_TEST_CASE("predict and a single update do not allocate in steady state", "[filter][allocation]",
@@ -61,7 +48,7 @@ TEMPLATE_TEST_CASE("predict and a single update do not allocate in steady state"
   ekf.setLinearizationPoint(LinearizationPoint::kInvariant);
   ekf.update(RangeBearing{}, 0, Vec<2>(3.0, -1.4), r);
   CHECK(allocationsOfSteps() == 0);
-  CHECK(g_eigen_assert_failures.load() == 0);
+  CHECK(g_other_eigen_asserts.load() == 0);
 }
 
 TEMPLATE_TEST_CASE("the monocular tree filter's predict and updates do not allocate in steady state", "[filter][allocation]",
@@ -103,7 +90,7 @@ TEMPLATE_TEST_CASE("the monocular tree filter's predict and updates do not alloc
   ekf.setLinearizationPoint(LinearizationPoint::kObservabilityConstrained);
   ekf.update(rig.xyz_model, 10, rig.xyz_model(ConstantVelocity3D::pose(ekf.robotMean()), ekf.template landmarkMean<Point3>(10)), rig.pixel);
   CHECK(allocationsOfSteps() == 0);
-  CHECK(g_eigen_assert_failures.load() == 0);
+  CHECK(g_other_eigen_asserts.load() == 0);
   CHECK(ekf.template holds<TreeXYZR>(25));
 }
 
@@ -135,5 +122,5 @@ TEST_CASE("batched updates do not allocate in steady state, whatever the batch s
   }
   Eigen::internal::set_is_malloc_allowed(true);
   CHECK(g_allocations.load() - before == 0);
-  CHECK(g_eigen_assert_failures.load() == 0);
+  CHECK(g_other_eigen_asserts.load() == 0);
 }
