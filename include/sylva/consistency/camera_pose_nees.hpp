@@ -26,6 +26,7 @@
 #include "sylva/core/error.hpp"
 #include "sylva/core/quaternion.hpp"
 #include "sylva/core/types.hpp"
+#include "sylva/motion/pose_3d.hpp"
 
 namespace sylva {
 
@@ -41,12 +42,12 @@ inline CameraPoseError cameraPoseError(const Vec<13>& estimate, const Mat<13, 13
   if (!estimate.allFinite() || !truth.allFinite())
     fail(ErrorCode::kNonFinite, "cameraPoseNees: the estimate or the true state is not finite");
   const auto conj = [](const Vec<4>& q) { return Vec<4>(q[0], -q[1], -q[2], -q[3]); };
-  const Vec<4> q = estimate.segment<4>(3);
-  const double true_norm = truth.segment<4>(3).norm();
+  const Vec<4> q = estimate.segment<4>(Pose3D::kQuaternion);
+  const double true_norm = truth.segment<4>(Pose3D::kQuaternion).norm();
   if (!(q.norm() > 1e-12) || !(true_norm > 1e-12))
     fail(ErrorCode::kDegenerateGeometry,
          "cameraPoseNees: an orientation quaternion has (near) zero norm");
-  Vec<4> q_true = truth.segment<4>(3) / true_norm;
+  Vec<4> q_true = truth.segment<4>(Pose3D::kQuaternion) / true_norm;
   if (quaternionProduct<double>(conj(q), q_true)[0] < 0.0)
     q_true = -q_true;  // same rotation, the short way
   CameraPoseError out;
@@ -67,14 +68,14 @@ inline CameraPoseError cameraPoseErrorOnManifold(const Vec<13>& estimate, const 
                                                  const Vec<13>& truth) {
   if (!estimate.allFinite() || !truth.allFinite())
     fail(ErrorCode::kNonFinite, "cameraPoseNees: the estimate or the true state is not finite");
-  const Vec<4> q = estimate.segment<4>(3);
-  const double true_norm = truth.segment<4>(3).norm();
+  const Vec<4> q = estimate.segment<4>(Pose3D::kQuaternion);
+  const double true_norm = truth.segment<4>(Pose3D::kQuaternion).norm();
   if (!(q.norm() > 1e-12) || !(true_norm > 1e-12))
     fail(ErrorCode::kDegenerateGeometry, "cameraPoseNees: an orientation quaternion has (near) zero norm");
   CameraPoseError out;
   out.e.head<3>() = truth.head<3>() - estimate.head<3>();
   out.e.tail<3>() = rotationVectorFromQuaternion(quaternionProduct<double>(
-      Vec<4>(q[0], -q[1], -q[2], -q[3]) / q.norm(), Vec<4>(truth.segment<4>(3) / true_norm)));
+      Vec<4>(q[0], -q[1], -q[2], -q[3]) / q.norm(), Vec<4>(truth.segment<4>(Pose3D::kQuaternion) / true_norm)));
   out.S = covariance.topLeftCorner<6, 6>();
   return out;
 }

@@ -46,10 +46,11 @@
 #include "sylva/core/jacobian_ref.hpp"
 #include "sylva/core/gauge.hpp"
 #include "sylva/core/types.hpp"
-#include "sylva/detail/lower_rank_update.hpp"
 #include "sylva/detail/model_traits.hpp"
 #include "sylva/diff/evaluate.hpp"
 #include "sylva/filter/linearization.hpp"
+#include "sylva/filter/lower_covariance.hpp"
+#include "sylva/filter/slot_table.hpp"
 #include "sylva/filter/update_form.hpp"
 #include "sylva/noise/gaussian.hpp"
 
@@ -194,37 +195,7 @@ class BatchLinearizations {
   double* data_ = nullptr;
 };
 
-/// Reusable buffers of the batched update (innovation, S, R, L^-1 nu, linearizations, the
-/// landmark iterates of an iterated update).
-struct BatchWorkspace {
-  enum Slot { kInnovation, kInnovationCovariance, kNoise, kWhitenedInnovation, kInverseFactor, kIterates, kSlotCount };
-  Eigen::VectorXd buffers[kSlotCount];
-  Eigen::VectorXd lins;
-  std::vector<int> offsets;
-
-  Eigen::Map<Eigen::VectorXd> vector(Slot slot, int size) {
-    return Eigen::Map<Eigen::VectorXd>(grown(slot, size), size);
-  }
-  Eigen::Map<Eigen::MatrixXd> matrix(Slot slot, int rows) {
-    return Eigen::Map<Eigen::MatrixXd>(grown(slot, static_cast<Eigen::Index>(rows) * rows), rows, rows);
-  }
-
- private:
-  double* grown(Slot slot, Eigen::Index size) {
-    if (buffers[slot].size() < size) buffers[slot].resize(size);
-    return buffers[slot].data();
-  }
-};
-
 }  // namespace detail
-
-/// Where a landmark lives in the state.
-struct LandmarkSlot {
-  Id id;
-  int type_index;  ///< index into the filter's `Landmarks...`
-  int offset;      ///< first row of the block in the state
-  int dim;         ///< block size
-};
 
 /// A landmark parametrization as a value: what `visit` hands its callback, so that the callback
 /// can pick a model or a buffer by overloading on it (`using L = typename decltype(tag)::type`).
@@ -301,8 +272,8 @@ class BasicEkf {
     robot_mean_ = x0;
     robot_first_ = x0;
     robot_ideal_.setConstant(std::numeric_limits<double>::quiet_NaN());
-    cov_.template topLeftCorner<kRobotDim, kRobotDim>() = 0.5 * (P0 + P0.transpose());
-    n_ = kRobotDim;
+    cov_.stored().template topLeftCorner<kRobotDim, kRobotDim>() = 0.5 * (P0 + P0.transpose());
+    cov_.setDim(kRobotDim);
     revision_ = detail::nextRevision();
   }
 
@@ -387,15 +358,15 @@ class BasicEkf {
   // ---------------------------------------------------------------- access
 
   /// State dimension n = robot + all landmark blocks.
-  int dim() const { return n_; }
+  int dim() const { return cov_.dim(); }
 
   /// Changes with every change of the state, or of where it is linearized. A
   /// `Linearization` records the revision it was made at; `update` with linearizations
   /// refuses one made at another revision (or by another filter).
   std::uint64_t revision() const { return revision_; }
-  int landmarkCount() const { return static_cast<int>(slots_.size()); }
-  const std::vector<LandmarkSlot>& slots() const { return slots_; }
-  bool contains(Id id) const { return index_.count(id) != 0; }
+  int landmarkCount() const { return slots_.size(); }
+  const std::vector<LandmarkSlot>& slots() const { return slots_.slots(); }
+  bool contains(Id id) const { return slots_.contains(id); }
   const Robot& robot() const { return robot_; }
 
   /// The slot of `id` (throws kUnknownId).
@@ -404,8 +375,8 @@ class BasicEkf {
   /// True when `id` exists and is parametrized as `Landmark`.
   template <typename Landmark>
   bool holds(Id id) const {
-    const auto it = index_.find(id);
-    return it != index_.end() && slots_[it->second].type_index == typeIndexOf<Landmark>();
+    const LandmarkSlot* s = slots_.find(id);
+    return s != nullptr && s->type_index == typeIndexOf<Landmark>();
   }
 
   /// Calls `f(LandmarkTag<L>{})`, L being the parametrization of landmark `id`, and returns
@@ -420,7 +391,7 @@ class BasicEkf {
   /// The robot's mean (kRobotStateDim entries; on a manifold, a point of it).
   const RobotState& robotMean() const { return robot_mean_; }
   /// The robot's covariance (kRobotDim: on a manifold, of the tangent at robotMean()).
-  RobotCovariance robotCovariance() const { return symmetricBlock<kRobotDim, kRobotDim>(0, 0); }
+  RobotCovariance robotCovariance() const { return cov_.template block<kRobotDim, kRobotDim>(0, 0); }
 
   /// Mean of landmark `id`, which must be parametrized as `Landmark` (else kWrongLandmarkType).
   template <typename Landmark>
@@ -433,22 +404,22 @@ class BasicEkf {
   template <typename Landmark>
   Mat<Landmark::kDim, Landmark::kDim> landmarkCovariance(Id id) const {
     const LandmarkSlot& s = typedSlot<Landmark>(id, "landmarkCovariance");
-    return symmetricBlock<Landmark::kDim, Landmark::kDim>(s.offset, s.offset);
+    return cov_.template block<Landmark::kDim, Landmark::kDim>(s.offset, s.offset);
   }
 
   /// Cross-covariance between the robot and landmark `id`.
   template <typename Landmark>
   Mat<kRobotDim, Landmark::kDim> robotLandmarkCovariance(Id id) const {
     const LandmarkSlot& s = typedSlot<Landmark>(id, "robotLandmarkCovariance");
-    return symmetricBlock<kRobotDim, Landmark::kDim>(0, s.offset);
+    return cov_.template block<kRobotDim, Landmark::kDim>(0, s.offset);
   }
 
   /// Copy of the whole mean: the robot's state, then the landmark blocks. Its length is n
   /// (`dim()`) but for a robot on a manifold, whose state is kRobotStateDim - kRobotDim
   /// entries longer than its rows in the covariance.
   Eigen::VectorXd mean() const {
-    Eigen::VectorXd out(n_ - kRobotDim + kRobotStateDim);
-    out << robot_mean_, mean_.segment(kRobotDim, n_ - kRobotDim);
+    Eigen::VectorXd out(dim() - kRobotDim + kRobotStateDim);
+    out << robot_mean_, mean_.segment(kRobotDim, dim() - kRobotDim);
     return out;
   }
 
@@ -457,11 +428,11 @@ class BasicEkf {
   /// above the diagonal are not stored: read single entries from the lower triangle, or
   /// through the typed blocks below. Valid until a landmark is added, removed or
   /// reparametrized (the storage may move).
-  auto covarianceView() const { return cov_.topLeftCorner(n_, n_).template selfadjointView<Eigen::Lower>(); }
+  auto covarianceView() const { return cov_.inUse().template selfadjointView<Eigen::Lower>(); }
 
   /// Copy of the whole covariance (n x n, both triangles filled).
   Eigen::MatrixXd covariance() const {
-    Eigen::MatrixXd full = cov_.topLeftCorner(n_, n_).template selfadjointView<Eigen::Lower>();
+    Eigen::MatrixXd full = cov_.inUse().template selfadjointView<Eigen::Lower>();
     return full;
   }
 
@@ -526,7 +497,7 @@ class BasicEkf {
     robot_mean_ = next;
     robot_first_ = next;
     robot_ideal_.setConstant(std::numeric_limits<double>::quiet_NaN());
-    transformRobotBlock(F, P_rr_next);  // eq. 2.27
+    cov_.template transformRobotBlock<kRobotDim>(F, P_rr_next);  // eq. 2.27
   }
 
   // ---------------------------------------------------------------- update
@@ -562,7 +533,7 @@ class BasicEkf {
     // P H^T, S = H P H^T + R and its factor at the stored linearization.
     const auto formInnovationCovariance = [&](const char* where) {
       PHt.setZero();
-      accumulateCovarianceTimesHt<L>(lins.J_z_x(0), lins.J_z_l(0), lins.offset(0), PHt, 0);
+      cov_.template addTimesHt<kRobotDim, L>(lins.J_z_x(0), lins.J_z_l(0), lins.offset(0), PHt, 0);
       S = lins.J_z_x(0) * PHt.template topRows<kRobotDim>() +
           lins.J_z_l(0) * PHt.template middleRows<L>(lins.offset(0)) + noise.covariance();
       S = (0.5 * (S + S.transpose())).eval();
@@ -657,7 +628,7 @@ class BasicEkf {
     // P H^T) for the linearizations in `lins`.
     const auto formInnovationCovariance = [&] {
       PHt.setZero();
-      for (int a = 0; a < k; ++a) accumulateCovarianceTimesHt<L>(lins.J_z_x(a), lins.J_z_l(a), lins.offset(a), PHt, a * M);
+      for (int a = 0; a < k; ++a) cov_.template addTimesHt<kRobotDim, L>(lins.J_z_x(a), lins.J_z_l(a), lins.offset(a), PHt, a * M);
       for (int a = 0; a < k; ++a) {
         const int off = lins.offset(a);
         for (int b = 0; b <= a; ++b) {
@@ -763,14 +734,8 @@ class BasicEkf {
   template <typename ModelA, typename ModelB>
   Mat<ModelA::kDim, ModelB::kDim> crossCovariance(const Linearization<ModelA, kRobotDim>& a,
                                                    const Linearization<ModelB, kRobotDim>& b) const {
-    constexpr int La = ModelA::Landmark::kDim;
-    constexpr int Lb = ModelB::Landmark::kDim;
-    const auto P_rr = symmetricBlock<kRobotDim, kRobotDim>(0, 0);
-    const auto P_rb = symmetricBlock<kRobotDim, Lb>(0, b.landmark_offset);
-    const auto P_ar = symmetricBlock<La, kRobotDim>(a.landmark_offset, 0);
-    const auto P_ab = symmetricBlock<La, Lb>(a.landmark_offset, b.landmark_offset);
-    return a.J_z_x * (P_rr * b.J_z_x.transpose() + P_rb * b.J_z_l.transpose()) +
-           a.J_z_l * (P_ar * b.J_z_x.transpose() + P_ab * b.J_z_l.transpose());
+    return cov_.template crossCovariance<kRobotDim>(a.J_z_x, a.J_z_l, a.landmark_offset, b.J_z_x, b.J_z_l,
+                                                    b.landmark_offset);
   }
 
   /// Innovation and its covariance S = H P H^T + R for a candidate pairing, without
@@ -834,29 +799,28 @@ class BasicEkf {
     P_ll = (0.5 * (P_ll + P_ll.transpose())).eval();
     // The new block's rows against the landmarks, J_l_x P_rm, computed before anything is
     // written: the product (and its buffer) may allocate for a large state.
-    const int m = n_ - kRobotDim;
-    const Eigen::Matrix<double, L, Eigen::Dynamic> J_P_rm = J_l_x * cov_.block(kRobotDim, 0, m, kRobotDim).transpose();
+    const int m = dim() - kRobotDim;
+    const Eigen::Matrix<double, L, Eigen::Dynamic> J_P_rm = J_l_x * cov_.stored().block(kRobotDim, 0, m, kRobotDim).transpose();
     if (!P_ll.allFinite() || !J_P_rr.allFinite() || !J_P_rm.allFinite())
       fail(ErrorCode::kNonFinite, std::string(InverseModel::kName) + ": the new landmark's covariance is not finite "
                                                                      "(its Jacobians or noise overflow it)");
     // Everything that may allocate comes first, and the filter is unchanged if it throws: the
     // slot list's room (doubling), the storage (which only grows), then the id's entry in the
     // index (the last thing that can fail).
-    if (slots_.size() == slots_.capacity()) slots_.reserve(std::max<std::size_t>(8, 2 * slots_.capacity()));
-    ensureCapacity(n_ + L);
-    index_.emplace(id, slots_.size());
+    slots_.reserveOne();
+    ensureCapacity(dim() + L);
+    const int off = dim();
+    slots_.append(LandmarkSlot{id, typeIndexOf<Landmark>(), off, L});
     // From here on nothing can fail.
-    const int off = n_;
     mean_.template segment<L>(off) = l;
     detail::normalize<Landmark>(mean_.template segment<L>(off));
     first_.template segment<L>(off) = mean_.template segment<L>(off);
     ideal_.template segment<L>(off).setConstant(std::numeric_limits<double>::quiet_NaN());
     // New rows (lower storage): [J_l_x P_rr, J_l_x P_rm]    (eq. 2.39, bottom row)
-    cov_.template block<L, kRobotDim>(off, 0) = J_P_rr;
-    if (m > 0) cov_.block(off, kRobotDim, L, m) = J_P_rm;
-    cov_.template block<L, L>(off, off) = P_ll;
-    n_ += L;
-    slots_.push_back(LandmarkSlot{id, typeIndexOf<Landmark>(), off, L});  // room reserved above
+    cov_.stored().template block<L, kRobotDim>(off, 0) = J_P_rr;
+    if (m > 0) cov_.stored().block(off, kRobotDim, L, m) = J_P_rm;
+    cov_.stored().template block<L, L>(off, off) = P_ll;
+    cov_.setDim(dim() + L);
   }
 
   /// Removes landmark `id`: its rows and columns leave the state. O(n^2) (moves).
@@ -865,12 +829,7 @@ class BasicEkf {
     const std::size_t k = slotIndex(id);
     const LandmarkSlot s = slots_[k];
     eraseBlock(s.offset, s.dim);
-    index_.erase(id);
-    slots_.erase(slots_.begin() + static_cast<std::ptrdiff_t>(k));
-    for (std::size_t j = k; j < slots_.size(); ++j) {
-      slots_[j].offset -= s.dim;
-      index_[slots_[j].id] = j;
-    }
+    slots_.erase(k);
   }
 
   /// Changes the parametrization of landmark `id` from `Conversion::From` to
@@ -1132,9 +1091,7 @@ class BasicEkf {
   }
 
   std::size_t slotIndex(Id id) const {
-    const auto it = index_.find(id);
-    if (it == index_.end()) fail(ErrorCode::kUnknownId, "no landmark with id " + std::to_string(id));
-    return it->second;
+    return slots_.indexOf(id);
   }
 
   template <typename Landmark>
@@ -1177,139 +1134,76 @@ class BasicEkf {
     }
     const std::size_t k = slotIndex(s.id);
     // New block rows against every other column of the state, before anything moves.
-    const int rest = n_ - Lf;  // dimension of the state without the old block
+    const int rest = dim() - Lf;  // dimension of the state without the old block
     Eigen::MatrixXd cross(Lt, rest);  // allocation: reparametrization is not a hot path
-    for (int c = 0, dest = 0; c < n_; ++c) {
+    for (int c = 0, dest = 0; c < dim(); ++c) {
       if (c >= s.offset && c < s.offset + Lf) continue;
       Vec<kRobotDim> p_rc;
-      for (int r = 0; r < kRobotDim; ++r) p_rc[r] = lowerAt(r, c);
+      for (int r = 0; r < kRobotDim; ++r) p_rc[r] = cov_(r, c);
       Vec<Lf> p_lc;
-      for (int r = 0; r < Lf; ++r) p_lc[r] = lowerAt(s.offset + r, c);
+      for (int r = 0; r < Lf; ++r) p_lc[r] = cov_(s.offset + r, c);
       cross.col(dest++) = J_x * p_rc + J_l * p_lc;
     }
     Mat<Lt, kRobotDim + Lf> J;
     J << J_x, J_l;
     Mat<kRobotDim + Lf, kRobotDim + Lf> P_joint;
-    P_joint << symmetricBlock<kRobotDim, kRobotDim>(0, 0), symmetricBlock<kRobotDim, Lf>(0, s.offset),
-        symmetricBlock<Lf, kRobotDim>(s.offset, 0), symmetricBlock<Lf, Lf>(s.offset, s.offset);
+    P_joint << cov_.template block<kRobotDim, kRobotDim>(0, 0), cov_.template block<kRobotDim, Lf>(0, s.offset),
+        cov_.template block<Lf, kRobotDim>(s.offset, 0), cov_.template block<Lf, Lf>(s.offset, s.offset);
     Mat<Lt, Lt> P_new = J * P_joint * J.transpose() + added;
     P_new = (0.5 * (P_new + P_new.transpose())).eval();
-    if (Lt > Lf) ensureCapacity(n_ - Lf + Lt);
+    if (Lt > Lf) ensureCapacity(dim() - Lf + Lt);
     // From here on nothing can fail.
     eraseBlock(s.offset, Lf);
-    slots_.erase(slots_.begin() + static_cast<std::ptrdiff_t>(k));
-    for (std::size_t j = k; j < slots_.size(); ++j) {
-      slots_[j].offset -= Lf;
-      index_[slots_[j].id] = j;
-    }
-    const int off = n_;
+    const int off = dim();
     mean_.template segment<Lt>(off) = new_mean;
     detail::normalize<To>(mean_.template segment<Lt>(off));
     first_.template segment<Lt>(off) = mean_.template segment<Lt>(off);  // a new first estimate
     ideal_.template segment<Lt>(off).setConstant(std::numeric_limits<double>::quiet_NaN());
-    cov_.block(off, 0, Lt, rest) = cross;
-    cov_.template block<Lt, Lt>(off, off) = P_new;
-    n_ += Lt;
-    index_[s.id] = slots_.size();
-    slots_.push_back(LandmarkSlot{s.id, typeIndexOf<To>(), off, Lt});
+    cov_.stored().block(off, 0, Lt, rest) = cross;
+    cov_.stored().template block<Lt, Lt>(off, off) = P_new;
+    cov_.setDim(dim() + Lt);
+    slots_.moveToEnd(k, LandmarkSlot{s.id, typeIndexOf<To>(), off, Lt});
   }
 
   // ---------------------------------------------------------------- storage
 
-  /// P(i, j) read from the authoritative lower triangle.
-  double lowerAt(int i, int j) const { return i >= j ? cov_(i, j) : cov_(j, i); }
-
-  /// The R x C block of the full symmetric P starting at (row, col), for blocks that are
-  /// either on the diagonal or entirely off it.
-  template <int R, int C>
-  Mat<R, C> symmetricBlock(int row, int col) const {
-    if (row == col && R == C) {
-      Mat<R, C> out;
-      for (int j = 0; j < C; ++j)
-        for (int i = 0; i < R; ++i) out(i, j) = lowerAt(row + i, col + j);
-      return out;
-    }
-    if (row >= col + C) return cov_.template block<R, C>(row, col);
-    return cov_.template block<C, R>(col, row).transpose();
-  }
-
   void ensureCapacity(int needed) {
-    if (needed <= capacity_) return;
-    const int capacity = std::max(needed, 2 * capacity_);
+    if (needed <= cov_.capacity()) return;
+    const int capacity = std::max(needed, 2 * cov_.capacity());
+    // Everything is allocated before anything is swapped in.
     Eigen::VectorXd mean = Eigen::VectorXd::Zero(capacity);
     Eigen::VectorXd first = Eigen::VectorXd::Zero(capacity);
     Eigen::VectorXd ideal = Eigen::VectorXd::Constant(capacity, std::numeric_limits<double>::quiet_NaN());
-    Eigen::MatrixXd cov = Eigen::MatrixXd::Zero(capacity, capacity);
-    mean.head(n_) = mean_.head(n_);
-    first.head(n_) = first_.head(n_);
-    ideal.head(n_) = ideal_.head(n_);
-    cov.topLeftCorner(n_, n_).template triangularView<Eigen::Lower>() =
-        cov_.topLeftCorner(n_, n_);
+    Eigen::MatrixXd cov = cov_.grown(capacity);
+    const int n = dim();
+    mean.head(n) = mean_.head(n);
+    first.head(n) = first_.head(n);
+    ideal.head(n) = ideal_.head(n);
     mean_.swap(mean);
     first_.swap(first);
     ideal_.swap(ideal);
-    cov_.swap(cov);
-    capacity_ = capacity;
+    cov_.adopt(cov);
   }
 
-  /// Deletes rows and columns [off, off + d) from mean and lower-triangular covariance.
+  /// Deletes rows and columns [off, off + d) from the means and the covariance.
   void eraseBlock(int off, int d) {
-    const int tail = n_ - off - d;
+    const int tail = dim() - off - d;
     if (tail > 0) {
       // Moved down in place (std::copy runs forwards, so an overlap is safe): no temporary,
       // so nothing here can fail.
       for (Eigen::VectorXd* v : {&mean_, &first_, &ideal_}) std::copy(v->data() + off + d, v->data() + off + d + tail, v->data() + off);
-      // Columns left of the block: move their lower rows up by d.
-      for (int j = 0; j < off; ++j) {
-        double* col = cov_.col(j).data();
-        std::copy(col + off + d, col + n_, col + off);
-      }
-      // Columns right of the block: move left by d and up by d.
-      for (int j = off; j < off + tail; ++j) {
-        const double* src = cov_.col(j + d).data() + j + d;
-        double* dst = cov_.col(j).data() + j;
-        std::copy(src, src + (n_ - j - d), dst);
-      }
     }
-    n_ -= d;
+    cov_.erase(off, d);
   }
 
-  /// Workspace view of n_ x cols doubles (cols = M or `dynamic_cols` if M is Dynamic).
+  /// Workspace view of dim() x cols doubles (cols = M or `dynamic_cols` if M is Dynamic).
   /// Grows only when a larger state or batch is seen.
   template <int M>
   Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, M>> workspaceMatrix(int dynamic_cols) {
     const int cols = M == Eigen::Dynamic ? dynamic_cols : M;
-    const Eigen::Index needed = static_cast<Eigen::Index>(n_) * cols;
+    const Eigen::Index needed = static_cast<Eigen::Index>(dim()) * cols;
     if (workspace_a_.size() < needed) workspace_a_.resize(needed);
-    return Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, M>>(workspace_a_.data(), n_, cols);
-  }
-
-  template <int M>
-  Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, M>> secondWorkspace(int cols) {
-    const Eigen::Index needed = static_cast<Eigen::Index>(n_) * cols;
-    if (workspace_b_.size() < needed) workspace_b_.resize(needed);
-    return Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, M>>(workspace_b_.data(), n_, cols);
-  }
-
-  /// out(:, col0 .. col0 + m) += P H^T for one observation whose H has the blocks J_z_x
-  /// (robot) and J_z_l (landmark at offset o), reading the robot and landmark columns of P
-  /// from the lower triangle in three pieces each. O(n m).
-  template <int L, typename Jx, typename Jl, typename Out>
-  void accumulateCovarianceTimesHt(const Jx& J_z_x, const Jl& J_z_l, int o, Out& out, int col0) const {
-    constexpr int M = Jx::RowsAtCompileTime;
-    auto dest = out.template middleCols<M>(col0);
-    // Robot columns of P (offset 0): rows [0, r) are the robot block, rows [r, n) are stored.
-    dest.template topRows<kRobotDim>().noalias() +=
-        symmetricBlock<kRobotDim, kRobotDim>(0, 0) * J_z_x.transpose();
-    const int below_robot = n_ - kRobotDim;
-    dest.bottomRows(below_robot).noalias() +=
-        cov_.block(kRobotDim, 0, below_robot, kRobotDim) * J_z_x.transpose();
-    // Landmark columns of P at offset o: rows [0, o) are the transposed stored row block,
-    // rows [o, o + L) the diagonal block, rows [o + L, n) are stored.
-    dest.topRows(o).noalias() += cov_.block(o, 0, L, o).transpose() * J_z_l.transpose();
-    dest.template middleRows<L>(o).noalias() += symmetricBlock<L, L>(o, o) * J_z_l.transpose();
-    const int below = n_ - o - L;
-    dest.bottomRows(below).noalias() += cov_.block(o + L, o, below, L) * J_z_l.transpose();
+    return Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, M>>(workspace_a_.data(), dim(), cols);
   }
 
   /// Applies the gain for P H^T (n x M, overwritten), the Cholesky factor of S, the
@@ -1318,78 +1212,21 @@ class BasicEkf {
   template <int M, typename PHtMap, typename Llt, typename Nu, typename RMat, typename ApplyHt>
   void applyGain(PHtMap& PHt, const Llt& llt, const Nu& nu, const RMat& R, ApplyHt&& applyHt) {
     revision_ = detail::nextRevision();
-    auto P = cov_.topLeftCorner(n_, n_);
+    auto P = cov_.inUse();
+    auto delta = meanIncrement();
+    const auto gain = UpdateForm::template increment<M>(PHt, llt, nu, batch_, delta);
+    toInvariantIncrement(delta);
+    prepareGaugeTransport(delta);
+    checkPosteriorDomain(delta);  // may throw; nothing of the filter is written yet
     if constexpr (std::is_same_v<UpdateForm, JosephUpdate>) {
-      const int cols = static_cast<int>(PHt.cols());
-      // K = PHt S^-1, kept in the second workspace.
-      auto K = secondWorkspace<M>(cols);
-      K = PHt;
-      llt.matrixU().template solveInPlace<Eigen::OnTheRight>(K);
-      llt.matrixL().template solveInPlace<Eigen::OnTheRight>(K);
-      auto delta = meanIncrement();
-      delta.noalias() = K * nu;
-      toInvariantIncrement(delta);
-      prepareGaugeTransport(delta);
-      checkPosteriorDomain(delta);  // may throw; nothing of the filter is written yet
-      // Every product before anything is written, into a workspace of its own: R K^T
-      // allocates (M x n), and for a large state the n x n products make Eigen take its
-      // packing buffers from the heap; a failed allocation must leave the filter as it was.
-      const Eigen::Matrix<double, M, Eigen::Dynamic> RKt = R * K.transpose();
-      if (joseph_.size() < static_cast<Eigen::Index>(n_) * n_) joseph_.resize(static_cast<Eigen::Index>(n_) * n_);
-      Eigen::Map<Eigen::MatrixXd> A(joseph_.data(), n_, n_);
-      // A = (I - K H) P = P - K (P H^T)^T on the full matrix.
-      A = P.template selfadjointView<Eigen::Lower>();
-      A.noalias() -= K * PHt.transpose();
-      // B = A H^T, reusing the PHt workspace.
-      applyHt(A, PHt);
-      // A - B K^T + K R K^T = (I - K H) P (I - K H)^T + K R K^T
-      A.noalias() -= PHt * K.transpose();
-      A.noalias() += K * RKt;
+      const auto A = JosephUpdate::posterior<M>(P, gain, PHt, R, batch_, std::forward<ApplyHt>(applyHt));  // may allocate
       applyMeanIncrement(delta);
       P.template triangularView<Eigen::Lower>() = A;
     } else {
       (void)R;
       (void)applyHt;
-      // W = PHt L^-T (in place), x += W L^-1 nu, P -= W W^T on the lower triangle.
-      auto delta = meanIncrement();
-      if constexpr (M == Eigen::Dynamic) {
-        // W = PHt L^-T as a product with the explicit (small, triangular) L^-1: Eigen's
-        // blocked triangular solve on a tall n x km right-hand side is several times slower
-        // than a GEMM. Row blocks keep Eigen's packed panels on the stack. W lives in the
-        // second workspace.
-        const int cols = static_cast<int>(PHt.cols());
-        auto L_inv = batch_.matrix(detail::BatchWorkspace::kInverseFactor, cols);
-        L_inv.setIdentity();
-        llt.matrixL().solveInPlace(L_inv);
-        auto W = secondWorkspace<Eigen::Dynamic>(cols);
-        const int block = detail::lowerRankUpdateTile(cols);
-        for (int r0 = 0; r0 < n_; r0 += block) {
-          const int rows = std::min(block, n_ - r0);
-          W.middleRows(r0, rows).noalias() =
-              PHt.middleRows(r0, rows) * L_inv.transpose();  // a plain GEMM (L^-1 has zeros above)
-        }
-        auto v = batch_.vector(detail::BatchWorkspace::kWhitenedInnovation, cols);
-        v.noalias() = L_inv * nu;
-        delta.noalias() = W * v;
-        toInvariantIncrement(delta);
-        prepareGaugeTransport(delta);
-        checkPosteriorDomain(delta);  // may throw; nothing of the filter is written yet
-        applyMeanIncrement(delta);
-        detail::subtractLowerRankUpdate(P, W);  // a tiled symmetric rank-km update
-      } else {
-        llt.matrixU().template solveInPlace<Eigen::OnTheRight>(PHt);
-        const Eigen::Matrix<double, M, 1> v = llt.matrixL().solve(nu);
-        delta.noalias() = PHt * v;
-        toInvariantIncrement(delta);
-        prepareGaugeTransport(delta);
-        checkPosteriorDomain(delta);  // may throw; nothing of the filter is written yet
-        applyMeanIncrement(delta);
-        // One column at a time: a fixed-size GEMV per column, one pass over half of P.
-        for (int j = 0; j < n_; ++j) {
-          const Eigen::Matrix<double, M, 1> w_j = PHt.row(j).transpose();
-          P.col(j).tail(n_ - j).noalias() -= PHt.bottomRows(n_ - j) * w_j;
-        }
-      }
+      applyMeanIncrement(delta);
+      SymmetricUpdate::downdate<M>(P, gain);
     }
     carryCovarianceToPosterior();
     carryCovarianceAlongGauge();
@@ -1410,8 +1247,8 @@ class BasicEkf {
   void toInvariantIncrement(Delta& delta) {
     if constexpr (kInvariantApplies) {
       if (linearization_ != LinearizationPoint::kInvariant) return;
-      if (invariant_.size() < 2 * static_cast<Eigen::Index>(n_)) invariant_.resize(2 * static_cast<Eigen::Index>(n_));
-      auto c = invariant_.head(n_);
+      if (invariant_.size() < 2 * static_cast<Eigen::Index>(dim())) invariant_.resize(2 * static_cast<Eigen::Index>(dim()));
+      auto c = invariant_.head(dim());
       c.setZero();
       const double phi = delta[Robot::kPlanarHeading];
       const double cos_phi = std::cos(phi);
@@ -1430,7 +1267,7 @@ class BasicEkf {
       };
       retract(Robot::kPlanarPosition, robot_mean_.template segment<2>(Robot::kPlanarPosition));
       constexpr int kPositions[] = {Landmarks_::kPlanarPosition...};
-      for (const LandmarkSlot& s : slots_) {
+      for (const LandmarkSlot& s : slots_.slots()) {
         const int o = s.offset + kPositions[s.type_index];
         retract(o, mean_.template segment<2>(o));
       }
@@ -1446,12 +1283,12 @@ class BasicEkf {
     if constexpr (kInvariantApplies) {
       if (linearization_ != LinearizationPoint::kInvariant) return;
       constexpr int h = Robot::kPlanarHeading;
-      const auto c = invariant_.head(n_);
-      auto a = invariant_.segment(n_, n_);
-      for (int i = 0; i < n_; ++i) a[i] = lowerAt(i, h);
+      const auto c = invariant_.head(dim());
+      auto a = invariant_.segment(dim(), dim());
+      for (int i = 0; i < dim(); ++i) a[i] = cov_(i, h);
       a += (0.5 * cov_(h, h)) * c;
-      for (int j = 0; j < n_; ++j)
-        cov_.col(j).segment(j, n_ - j) += c.tail(n_ - j) * a[j] + a.tail(n_ - j) * c[j];
+      for (int j = 0; j < dim(); ++j)
+        cov_.stored().col(j).segment(j, dim() - j) += c.tail(dim() - j) * a[j] + a.tail(dim() - j) * c[j];
     }
   }
 
@@ -1460,7 +1297,7 @@ class BasicEkf {
   /// Column block k (0: N(x-)^T, 1: (N(x+) - N(x-))^T, 2: B^T) of the gauge workspace, 5 x n.
   Eigen::Map<Eigen::Matrix<double, kGaugeDim, Eigen::Dynamic>> gaugeBlock(int k) {
     return Eigen::Map<Eigen::Matrix<double, kGaugeDim, Eigen::Dynamic>>(
-        gauge_.data() + static_cast<Eigen::Index>(k) * kGaugeDim * n_, kGaugeDim, n_);
+        gauge_.data() + static_cast<Eigen::Index>(k) * kGaugeDim * dim(), kGaugeDim, dim());
   }
 
   /// Writes N(x)^T for x = mean_ + scale * delta into `Nt`, block by block.
@@ -1474,7 +1311,7 @@ class BasicEkf {
         const RobotState x = robot_mean_ + scale * delta.template head<kRobotDim>();
         Nt.template leftCols<kRobotDim>() = robot_.gaugeDirections(x).transpose();
       }
-      for (const LandmarkSlot& s : slots_) fillSlotGauge(s, delta, scale, Nt, std::index_sequence_for<Landmarks_...>());
+      for (const LandmarkSlot& s : slots_.slots()) fillSlotGauge(s, delta, scale, Nt, std::index_sequence_for<Landmarks_...>());
     } else {
       (void)delta;
       (void)scale;
@@ -1505,7 +1342,7 @@ class BasicEkf {
     gauge_active_ = false;
     if constexpr (kObservabilityConstrainedApplies) {
       if (linearization_ != LinearizationPoint::kObservabilityConstrained) return;
-      const Eigen::Index needed = 3 * static_cast<Eigen::Index>(kGaugeDim) * n_;
+      const Eigen::Index needed = 3 * static_cast<Eigen::Index>(kGaugeDim) * dim();
       if (gauge_.size() < needed) gauge_.resize(needed);
       auto Nt = gaugeBlock(0);
       auto dNt = gaugeBlock(1);
@@ -1525,7 +1362,7 @@ class BasicEkf {
       gauge_robot_only_ = gauge_inverse_choice_ == GaugeInverse::kRobot && invert(N_robot * N_robot.transpose());
       if (!gauge_robot_only_) {
         Mat<kGaugeDim, kGaugeDim> NtN = Mat<kGaugeDim, kGaugeDim>::Zero();
-        for (int i = 0; i < n_; ++i) NtN.noalias() += Nt.col(i) * Nt.col(i).transpose();
+        for (int i = 0; i < dim(); ++i) NtN.noalias() += Nt.col(i) * Nt.col(i).transpose();
         if (!invert(NtN)) return;
       }
       gauge_active_ = true;
@@ -1549,51 +1386,40 @@ class BasicEkf {
       // Bt = N_a^T P (5 x n) from the lower triangle.
       if (gauge_robot_only_) {
         const Mat<kGaugeDim, kRobotDim> N_robot = Nt.template leftCols<kRobotDim>();
-        Bt.template leftCols<kRobotDim>() = N_robot * symmetricBlock<kRobotDim, kRobotDim>(0, 0);
-        for (int j = kRobotDim; j < n_; ++j) {
-          const Vec<kRobotDim> p = cov_.row(j).template head<kRobotDim>().transpose();  // P(robot, j)
+        Bt.template leftCols<kRobotDim>() = N_robot * cov_.template block<kRobotDim, kRobotDim>(0, 0);
+        for (int j = kRobotDim; j < dim(); ++j) {
+          const Vec<kRobotDim> p = cov_.stored().row(j).template head<kRobotDim>().transpose();  // P(robot, j)
           Bt.col(j) = N_robot * p;
         }
       } else {
         // Each stored P(i, j), i >= j, adds N_i P(i, j) to column j and, below the diagonal,
         // N_j P(i, j) to column i.
         Bt.setZero();
-        for (int j = 0; j < n_; ++j) {
-          const auto col = cov_.col(j).segment(j, n_ - j);
-          Bt.col(j).noalias() += Nt.middleCols(j, n_ - j) * col;
-          Bt.middleCols(j + 1, n_ - j - 1).noalias() += Nt.col(j) * col.tail(n_ - j - 1).transpose();
+        for (int j = 0; j < dim(); ++j) {
+          const auto col = cov_.stored().col(j).segment(j, dim() - j);
+          Bt.col(j).noalias() += Nt.middleCols(j, dim() - j) * col;
+          Bt.middleCols(j + 1, dim() - j - 1).noalias() += Nt.col(j) * col.tail(dim() - j - 1).transpose();
         }
       }
       // B^T = G N_a^T P, and C = A P A^T = G N_a^T P N_a G.
-      for (int j = 0; j < n_; ++j) {
+      for (int j = 0; j < dim(); ++j) {
         const Vec<kGaugeDim> b = gauge_inverse_ * Bt.col(j);
         Bt.col(j) = b;
       }
       Mat<kGaugeDim, kGaugeDim> NtB = Mat<kGaugeDim, kGaugeDim>::Zero();
-      const int rows = gauge_robot_only_ ? kRobotDim : n_;
+      const int rows = gauge_robot_only_ ? kRobotDim : dim();
       for (int i = 0; i < rows; ++i) NtB.noalias() += Nt.col(i) * Bt.col(i).transpose();
       const Mat<kGaugeDim, kGaugeDim> C = gauge_inverse_ * NtB;
       const Mat<kGaugeDim, kGaugeDim> C_half = 0.25 * (C + C.transpose());
-      for (int j = 0; j < n_; ++j) {
+      for (int j = 0; j < dim(); ++j) {
         const Vec<kGaugeDim> b = Bt.col(j) + C_half * dNt.col(j);
         Bt.col(j) = b;
       }
-      for (int j = 0; j < n_; ++j) {
-        auto col = cov_.col(j).segment(j, n_ - j);
-        col.noalias() += dNt.middleCols(j, n_ - j).transpose() * Bt.col(j);
-        col.noalias() += Bt.middleCols(j, n_ - j).transpose() * dNt.col(j);
+      for (int j = 0; j < dim(); ++j) {
+        auto col = cov_.stored().col(j).segment(j, dim() - j);
+        col.noalias() += dNt.middleCols(j, dim() - j).transpose() * Bt.col(j);
+        col.noalias() += Bt.middleCols(j, dim() - j).transpose() * dNt.col(j);
       }
-    }
-  }
-
-  /// P_rr <- P_rr_next, P_mr <- P_mr F^T: the robot block and its cross-covariances through a
-  /// robot-only Jacobian F. O(n).
-  void transformRobotBlock(const Mat<kRobotDim, kRobotDim>& F, const RobotCovariance& P_rr_next) {
-    cov_.template topLeftCorner<kRobotDim, kRobotDim>() = 0.5 * (P_rr_next + P_rr_next.transpose());
-    // Lower storage holds P_mr (m x r).
-    for (int row = kRobotDim; row < n_; ++row) {
-      const Vec<kRobotDim> p = cov_.row(row).template head<kRobotDim>().transpose();
-      cov_.row(row).template head<kRobotDim>() = (F * p).transpose();
     }
   }
 
@@ -1605,13 +1431,13 @@ class BasicEkf {
     } else {
       robot_mean_ += delta.template head<kRobotDim>();
     }
-    mean_.segment(kRobotDim, n_ - kRobotDim) += delta.tail(n_ - kRobotDim);
+    mean_.segment(kRobotDim, dim() - kRobotDim) += delta.tail(dim() - kRobotDim);
   }
 
   /// Workspace for the mean increment of an update (grows only with the state).
   Eigen::Map<Eigen::VectorXd> meanIncrement() {
-    if (delta_.size() < n_) delta_.resize(n_);
-    return Eigen::Map<Eigen::VectorXd>(delta_.data(), n_);
+    if (delta_.size() < dim()) delta_.resize(dim());
+    return Eigen::Map<Eigen::VectorXd>(delta_.data(), dim());
   }
 
   /// Throws kOutOfDomain if mean + delta would leave the domain of a landmark whose type
@@ -1620,7 +1446,7 @@ class BasicEkf {
   void checkPosteriorDomain(const Delta& delta) const {
     constexpr bool any = (detail::HasDomain<Landmarks_>::value || ...);
     if constexpr (any) {
-      for (const LandmarkSlot& s : slots_) checkSlotDomain(s, delta, std::index_sequence_for<Landmarks_...>());
+      for (const LandmarkSlot& s : slots_.slots()) checkSlotDomain(s, delta, std::index_sequence_for<Landmarks_...>());
     }
   }
 
@@ -1656,13 +1482,13 @@ class BasicEkf {
     } else if constexpr (detail::HasNormalizationJacobian<Robot>::value) {
       const Mat<kRobotDim, kRobotDim> N = Robot::normalizationJacobian(robotMean());
       detail::normalize<Robot>(robot_mean_);
-      transformRobotBlock(N, RobotCovariance(N * robotCovariance() * N.transpose()));
+      cov_.template transformRobotBlock<kRobotDim>(N, RobotCovariance(N * robotCovariance() * N.transpose()));
     } else {
       detail::normalize<Robot>(robot_mean_);
     }
     constexpr bool any = (detail::HasNormalize<Landmarks_>::value || ...);
     if constexpr (any) {
-      for (const LandmarkSlot& s : slots_) normalizeSlot(s, std::index_sequence_for<Landmarks_...>());
+      for (const LandmarkSlot& s : slots_.slots()) normalizeSlot(s, std::index_sequence_for<Landmarks_...>());
     }
   }
 
@@ -1675,8 +1501,6 @@ class BasicEkf {
   }
 
   Robot robot_;
-  int n_ = 0;
-  int capacity_ = 0;
   /// The robot's mean, its linearization point for kFirstEstimates (its latest prediction) and
   /// for kIdeal (the true state handed over, NaN after each predict).
   RobotState robot_mean_;
@@ -1694,12 +1518,9 @@ class BasicEkf {
   Eigen::VectorXd ideal_;
   LinearizationPoint linearization_ = LinearizationPoint::kCurrentEstimate;
   IteratedUpdate iterated_;
-  Eigen::MatrixXd cov_;  // lower triangle of the top-left n_ x n_ corner is authoritative
-  std::vector<LandmarkSlot> slots_;
-  std::unordered_map<Id, std::size_t> index_;
+  detail::LowerCovariance cov_;  ///< the covariance (lower triangle) and the state dimension n
+  detail::SlotTable slots_;  ///< where each landmark's block lies
   Eigen::VectorXd workspace_a_;
-  Eigen::VectorXd workspace_b_;
-  Eigen::VectorXd joseph_;  ///< the Joseph form's n x n posterior, before it is copied into P
   Eigen::VectorXd delta_;
   Eigen::VectorXd invariant_;  ///< c and a of the invariant EKF's covariance transport (2n)
   /// N(x-)^T, (N(x+) - N(x-))^T and B^T of the observability-constrained transport (3 x 5n).

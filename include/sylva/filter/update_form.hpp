@@ -11,15 +11,149 @@
 ///   matrix: mirror the lower triangle, A = (I - K H) P, then A - (A H^T) K^T + K R K^T, i.e.
 ///   several full passes over P instead of half of one (7-10x the symmetric form's time at
 ///   n = 100..2000 in docs/update-benchmarks.md).
+///
+/// Each form's kernels are templates on the measurement size M only (Eigen::Dynamic for a
+/// batch), not on the filter: every filter type with the same M shares them. The filter
+/// runs them in two steps around its own hooks (the invariant and observability-constrained
+/// corrections, the landmarks' domain checks), so that nothing of it is written before the
+/// last thing that can fail:
+///   increment(PHt, llt, nu, workspace, delta)   delta = P H^T S^-1 nu, and what the
+///                                               covariance step needs; writes workspaces only
+///   (the filter's hooks, then its mean)
+///   downdate(P, W)      or   posterior(...)     the covariance step
+
+#include <Eigen/Cholesky>
+#include <Eigen/Core>
+#include <algorithm>
+#include <vector>
+
+#include "sylva/detail/lower_rank_update.hpp"
 
 namespace sylva {
+namespace detail {
+
+/// Reusable buffers of an update (innovation, S, R, L^-1 nu, L^-1, the linearizations, the
+/// landmark iterates of an iterated update, the gain's n x cols matrix, the Joseph form's
+/// n x n posterior). Each grows only when a larger state or batch is seen, so an update
+/// allocates nothing in steady state.
+struct BatchWorkspace {
+  enum Slot { kInnovation, kInnovationCovariance, kNoise, kWhitenedInnovation, kInverseFactor, kIterates, kSlotCount };
+  Eigen::VectorXd buffers[kSlotCount];
+  Eigen::VectorXd lins;
+  std::vector<int> offsets;
+  Eigen::VectorXd gain;    ///< W = P H^T L^-T (a batch) or K = P H^T S^-1 (Joseph), n x cols
+  Eigen::VectorXd joseph;  ///< the Joseph form's n x n posterior, before it is copied into P
+
+  Eigen::Map<Eigen::VectorXd> vector(Slot slot, int size) {
+    return Eigen::Map<Eigen::VectorXd>(grown(buffers[slot], size), size);
+  }
+  Eigen::Map<Eigen::MatrixXd> matrix(Slot slot, int rows) {
+    return Eigen::Map<Eigen::MatrixXd>(grown(buffers[slot], static_cast<Eigen::Index>(rows) * rows), rows, rows);
+  }
+  /// The gain's n x cols matrix (cols = M, or `cols` for M = Eigen::Dynamic).
+  template <int M>
+  Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, M>> gainMatrix(int n, int cols) {
+    return Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, M>>(grown(gain, static_cast<Eigen::Index>(n) * cols), n, cols);
+  }
+  Eigen::Map<Eigen::MatrixXd> josephMatrix(int n) {
+    return Eigen::Map<Eigen::MatrixXd>(grown(joseph, static_cast<Eigen::Index>(n) * n), n, n);
+  }
+
+ private:
+  static double* grown(Eigen::VectorXd& buffer, Eigen::Index size) {
+    if (buffer.size() < size) buffer.resize(size);
+    return buffer.data();
+  }
+};
+
+}  // namespace detail
 
 struct SymmetricUpdate {
   static constexpr const char* kName = "SymmetricUpdate";
+
+  /// delta = W L^-1 nu with W = P H^T L^-T (L: the Cholesky factor of S), returning W for
+  /// `downdate`. `PHt` (n x M) is P H^T; for a fixed M it is overwritten by W.
+  template <int M, typename PHtMap, typename Llt, typename Nu, typename Delta>
+  static Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, M>> increment(PHtMap& PHt, const Llt& llt, const Nu& nu,
+                                                                         detail::BatchWorkspace& ws, Delta& delta) {
+    const int n = static_cast<int>(PHt.rows());
+    if constexpr (M == Eigen::Dynamic) {
+      // W = PHt L^-T as a product with the explicit (small, triangular) L^-1: Eigen's blocked
+      // triangular solve on a tall n x km right-hand side is several times slower than a
+      // GEMM. Row blocks keep Eigen's packed panels on the stack.
+      const int cols = static_cast<int>(PHt.cols());
+      auto L_inv = ws.matrix(detail::BatchWorkspace::kInverseFactor, cols);
+      L_inv.setIdentity();
+      llt.matrixL().solveInPlace(L_inv);
+      auto W = ws.gainMatrix<Eigen::Dynamic>(n, cols);
+      const int block = detail::lowerRankUpdateTile(cols);
+      for (int r0 = 0; r0 < n; r0 += block) {
+        const int rows = std::min(block, n - r0);
+        W.middleRows(r0, rows).noalias() = PHt.middleRows(r0, rows) * L_inv.transpose();  // L^-1 has zeros above
+      }
+      auto v = ws.vector(detail::BatchWorkspace::kWhitenedInnovation, cols);
+      v.noalias() = L_inv * nu;
+      delta.noalias() = W * v;
+      return W;
+    } else {
+      llt.matrixU().template solveInPlace<Eigen::OnTheRight>(PHt);
+      const Eigen::Matrix<double, M, 1> v = llt.matrixL().solve(nu);
+      delta.noalias() = PHt * v;
+      return Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, M>>(PHt.data(), n, M);
+    }
+  }
+
+  /// P -= W W^T on the lower triangle of P (n x n).
+  template <int M, typename PBlock>
+  static void downdate(PBlock&& P, const Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, M>>& W) {
+    if constexpr (M == Eigen::Dynamic) {
+      detail::subtractLowerRankUpdate(P, W);  // a tiled symmetric rank-km update
+    } else {
+      // One column at a time: a fixed-size GEMV per column, one pass over half of P.
+      const int n = static_cast<int>(P.rows());
+      for (int j = 0; j < n; ++j) {
+        const Eigen::Matrix<double, M, 1> w_j = W.row(j).transpose();
+        P.col(j).tail(n - j).noalias() -= W.bottomRows(n - j) * w_j;
+      }
+    }
+  }
 };
 
 struct JosephUpdate {
   static constexpr const char* kName = "JosephUpdate";
+
+  /// delta = K nu with K = P H^T S^-1, returning K (kept in the workspace) for `posterior`.
+  template <int M, typename PHtMap, typename Llt, typename Nu, typename Delta>
+  static Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, M>> increment(const PHtMap& PHt, const Llt& llt, const Nu& nu,
+                                                                         detail::BatchWorkspace& ws, Delta& delta) {
+    auto K = ws.gainMatrix<M>(static_cast<int>(PHt.rows()), static_cast<int>(PHt.cols()));
+    K = PHt;
+    llt.matrixU().template solveInPlace<Eigen::OnTheRight>(K);
+    llt.matrixL().template solveInPlace<Eigen::OnTheRight>(K);
+    delta.noalias() = K * nu;
+    return K;
+  }
+
+  /// The posterior (I - K H) P (I - K H)^T + K R K^T, full n x n, in the workspace: nothing of
+  /// the filter is written (copy its lower triangle into P). `applyHt(A, out)` writes
+  /// out = A H^T for an n x n matrix A; `PHt` is reused for it. Every product is taken here,
+  /// before the filter writes anything: R K^T allocates (M x n), and for a large state the
+  /// n x n products make Eigen take its packing buffers from the heap.
+  template <int M, typename PBlock, typename PHtMap, typename RMat, typename ApplyHt>
+  static Eigen::Map<Eigen::MatrixXd> posterior(const PBlock& P, const Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, M>>& K,
+                                               PHtMap& PHt, const RMat& R, detail::BatchWorkspace& ws, ApplyHt&& applyHt) {
+    const Eigen::Matrix<double, M, Eigen::Dynamic> RKt = R * K.transpose();
+    auto A = ws.josephMatrix(static_cast<int>(P.rows()));
+    // A = (I - K H) P = P - K (P H^T)^T on the full matrix.
+    A = P.template selfadjointView<Eigen::Lower>();
+    A.noalias() -= K * PHt.transpose();
+    // B = A H^T, in the PHt workspace.
+    applyHt(A, PHt);
+    // A - B K^T + K R K^T = (I - K H) P (I - K H)^T + K R K^T
+    A.noalias() -= PHt * K.transpose();
+    A.noalias() += K * RKt;
+    return A;
+  }
 };
 
 }  // namespace sylva

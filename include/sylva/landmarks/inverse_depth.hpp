@@ -44,6 +44,19 @@ struct InverseDepth {
     return m;
   }
 
+  /// [dm/dtheta, dm/dphi] (3 x 2) of the unit direction m(theta, phi): the one place the
+  /// inverse-depth models and conversions take it from.
+  template <int = 0>  // compiled only where called (docs/build-time.md)
+  static Mat<3, 2> directionJacobian(double theta, double phi) {
+    const double ct = std::cos(theta), st = std::sin(theta);
+    const double cp = std::cos(phi), sp = std::sin(phi);
+    Mat<3, 2> J;
+    J << -cp * st, -sp * ct,  //
+        cp * ct, -sp * st,    //
+        0.0, cp;
+    return J;
+  }
+
   /// Euclidean point anchor + m / rho (requires rho != 0).
   template <typename T>
   static Vec<3, T> point(const Vec<6, T>& l) {
@@ -103,15 +116,11 @@ struct InverseDepthToPoint3 {
          << " 1/m is not usable for a Euclidean point (it must be > 0: in front of the anchor)";
       fail(ErrorCode::kDegenerateGeometry, os.str());
     }
-    const double ct = std::cos(l[3]), st = std::sin(l[3]);
-    const double cp = std::cos(l[4]), sp = std::sin(l[4]);
-    const Vec<3> m(cp * ct, cp * st, sp);
     if (J_to_x) (*J_to_x).setZero();
     if (J_to_l) {
       (*J_to_l).template leftCols<3>().setIdentity();
-      (*J_to_l).col(3) = Vec<3>(-cp * st, cp * ct, 0.0) / rho;    // d m / d theta
-      (*J_to_l).col(4) = Vec<3>(-sp * ct, -sp * st, cp) / rho;    // d m / d phi
-      (*J_to_l).col(5) = -m / (rho * rho);
+      (*J_to_l).template middleCols<2>(3) = InverseDepth::directionJacobian(l[3], l[4]) / rho;  // d m / d (theta, phi)
+      (*J_to_l).col(5) = -InverseDepth::direction<double>(l[3], l[4]) / (rho * rho);
     }
     return InverseDepth::point<double>(l);
   }

@@ -119,18 +119,6 @@ inline std::string errorReason(const Error& e) {
   return what;
 }
 
-/// dm/dtheta and dm/dphi (3x2) of m(theta, phi) in landmarks/inverse_depth.hpp.
-template <int = 0>  // compiled only where called (docs/build-time.md)
-Mat<3, 2> inverseDepthDirectionJacobian(double theta, double phi) {
-  const double ct = std::cos(theta), st = std::sin(theta);
-  const double cp = std::cos(phi), sp = std::sin(phi);
-  Mat<3, 2> J;
-  J << -cp * st, -sp * ct,  //
-      cp * ct, -sp * st,    //
-      0.0, cp;
-  return J;
-}
-
 }  // namespace detail
 
 struct InverseDepthTreeWidth {
@@ -201,7 +189,7 @@ struct InverseDepthTreeWidth {
     if (J_z_l) {
       auto J = *J_z_l;
       J.leftCols<3>() = rho * J0_c;  // dc'/da = rho I
-      J.middleCols<2>(3) = J0_c * detail::inverseDepthDirectionJacobian(l[3], l[4]);
+      J.middleCols<2>(3) = J0_c * InverseDepth::directionJacobian(l[3], l[4]);
       J.col(5) = J0_c * anchor_from_camera;  // dc'/drho = a - t
       J.col(6) = J0_l.col(3);                // d/dkappa
     }
@@ -372,7 +360,7 @@ struct InverseDepthRadiusInitialization {
 
     // d width / d (theta, phi) through the scaled base centre c' = m(theta, phi).
     const Mat<1, 2> J_w_angles =
-        J0_l.block<1, 3>(2, 0) * detail::inverseDepthDirectionJacobian(l6[3], l6[4]);
+        J0_l.block<1, 3>(2, 0) * InverseDepth::directionJacobian(l6[3], l6[4]);
     if (J_l_x) {
       auto J = *J_l_x;
       J.topRows<6>() = J6_x;

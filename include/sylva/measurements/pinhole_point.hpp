@@ -270,12 +270,9 @@ struct PinholePoint<InverseDepth> {
           J_z_h * Math::rotateTransposedJacobianNormalized(camera.segment<4>(Pose3D::kQuaternion), w);
     }
     if (J_z_l) {
-      const double ct = std::cos(l[3]), st = std::sin(l[3]);
-      const double cp = std::cos(l[4]), sp = std::sin(l[4]);
       auto J = *J_z_l;
       J.leftCols<3>() = rho * J_z_w;
-      J.col(3) = J_z_w * Vec<3>(-cp * st, cp * ct, 0.0);  // dm / dtheta
-      J.col(4) = J_z_w * Vec<3>(-sp * ct, -sp * st, cp);  // dm / dphi
+      J.middleCols<2>(3) = J_z_w * InverseDepth::directionJacobian(l[3], l[4]);  // dm / d(theta, phi)
       J.col(5) = J_z_w * anchor_offset;
     }
     return z;

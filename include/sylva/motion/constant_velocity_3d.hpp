@@ -64,7 +64,10 @@ struct ConstantVelocity3D {
   static constexpr int kDim = 13;
   static constexpr int kControlDim = 0;
   static constexpr int kNoiseDim = 6;  ///< [linear acceleration (3), angular acceleration (3)]
+  static constexpr int kPosition = Pose3D::kPosition;      ///< index of t
   static constexpr int kQuaternion = Pose3D::kQuaternion;  ///< index of q's w entry (OnManifold: the state on SO(3) x R^9)
+  static constexpr int kVelocity = 7;                      ///< index of v
+  static constexpr int kAngularVelocity = 10;              ///< index of omega_C
   static constexpr const char* kName = "ConstantVelocity3D";
   using State = Vec<13>;
   using Control = Vec<0>;
@@ -83,22 +86,22 @@ struct ConstantVelocity3D {
   template <typename T>
   Vec<13, T> propagate(const Vec<13, T>& x, const Vec<0, T>& /*u*/, const Vec<6, T>& n, double dt) const {
     const T step(dt);
-    const Vec<3, T> v = x.template segment<3>(7) + n.template head<3>() * step;
-    const Vec<3, T> omega = x.template segment<3>(10) + n.template tail<3>() * step;
+    const Vec<3, T> v = x.template segment<3>(kVelocity) + n.template head<3>() * step;
+    const Vec<3, T> omega = x.template segment<3>(kAngularVelocity) + n.template tail<3>() * step;
     Vec<13, T> next;
     if (velocity_frame == VelocityFrame::kWorld) {
       next.template head<3>() = x.template head<3>() + v * step;
     } else {
       // The camera-frame velocity turned into the world at the middle of the step's rotation.
       const Vec<4, T> mid =
-          quaternionProduct<T>(x.template segment<4>(3), quaternionFromRotationVector<T>(Vec<3, T>(omega * (step * T(0.5)))));
+          quaternionProduct<T>(x.template segment<4>(kQuaternion), quaternionFromRotationVector<T>(Vec<3, T>(omega * (step * T(0.5)))));
       next.template head<3>() = x.template head<3>() + rotationMatrix<T>(Vec<4, T>(mid / mid.norm())) * v * step;
     }
     const Vec<4, T> rotated =
-        quaternionProduct<T>(x.template segment<4>(3), quaternionFromRotationVector<T>(Vec<3, T>(omega * step)));
-    next.template segment<4>(3) = rotated / rotated.norm();
-    next.template segment<3>(7) = v;
-    next.template segment<3>(10) = omega;
+        quaternionProduct<T>(x.template segment<4>(kQuaternion), quaternionFromRotationVector<T>(Vec<3, T>(omega * step)));
+    next.template segment<4>(kQuaternion) = rotated / rotated.norm();
+    next.template segment<3>(kVelocity) = v;
+    next.template segment<3>(kAngularVelocity) = omega;
     return next;
   }
 
@@ -109,7 +112,7 @@ struct ConstantVelocity3D {
                    double dt,
                    JacobianRef<13, 13> J_x = {},
                    JacobianRef<13, 6> J_n = {}) const {
-    const double q_norm = x.segment<4>(3).norm();
+    const double q_norm = x.segment<4>(kQuaternion).norm();
     if (!(q_norm > 1e-12)) {
       std::ostringstream os;
       os << "ConstantVelocity3D: orientation quaternion has norm " << q_norm;
@@ -137,7 +140,7 @@ struct ConstantVelocity3D {
   State fromWorldVelocity(const State& x) const {
     if (velocity_frame == VelocityFrame::kWorld) return x;
     State out = x;
-    out.segment<3>(7) = rotationMatrix<double>(Vec<4>(x.segment<4>(3).normalized())).transpose() * x.segment<3>(7);
+    out.segment<3>(kVelocity) = rotationMatrix<double>(Vec<4>(x.segment<4>(kQuaternion).normalized())).transpose() * x.segment<3>(kVelocity);
     return out;
   }
 
@@ -150,17 +153,17 @@ struct ConstantVelocity3D {
     Mat<13, kGaugeDim> N = Mat<13, kGaugeDim>::Zero();
     N.topLeftCorner<3, 3>().setIdentity();
     N.block<3, 1>(0, 3) << -x[1], x[0], 0.0;
-    N.block<4, 1>(3, 3) = 0.5 * quaternionProduct<double>(Vec<4>(0.0, 0.0, 0.0, 1.0), Vec<4>(x.segment<4>(3)));
+    N.block<4, 1>(kQuaternion, 3) = 0.5 * quaternionProduct<double>(Vec<4>(0.0, 0.0, 0.0, 1.0), Vec<4>(x.segment<4>(kQuaternion)));
     if (velocity_frame == VelocityFrame::kWorld) N.block<3, 1>(7, 3) << -x[8], x[7], 0.0;
     N.block<3, 1>(0, 4) = x.head<3>();
-    N.block<3, 1>(7, 4) = x.segment<3>(7);
+    N.block<3, 1>(kVelocity, 4) = x.segment<3>(kVelocity);
     return N;
   }
 
   /// Renormalizes the quaternion (after an update moved it off the unit sphere).
   static void normalize(Eigen::Ref<State> x) {
-    const double q_norm = x.segment<4>(3).norm();
-    if (q_norm > 0.0) x.segment<4>(3) /= q_norm;
+    const double q_norm = x.segment<4>(kQuaternion).norm();
+    if (q_norm > 0.0) x.segment<4>(kQuaternion) /= q_norm;
   }
 
   /// Jacobian of `normalize` at x: identity but for the quaternion block (I - u u^T) / |q|,
@@ -168,7 +171,7 @@ struct ConstantVelocity3D {
   template <int = 0>  // compiled only where called (docs/build-time.md)
   static Mat<13, 13> normalizationJacobian(const State& x) {
     Mat<13, 13> N = Mat<13, 13>::Identity();
-    const Vec<4> q = x.segment<4>(3);
+    const Vec<4> q = x.segment<4>(kQuaternion);
     const double q_norm = q.norm();
     if (q_norm > 0.0) {
       const Vec<4> u = q / q_norm;
@@ -206,12 +209,12 @@ struct ConstantVelocity3D {
   Mat<13, 13> firstEstimatesJacobian(const State& from, const State& to, double dt) const {
     Mat<13, 13> F;
     const State predicted = (*this)(from, Control(), dt, F);  // the textbook blocks at `from`
-    const Vec<4> q = from.segment<4>(3).normalized();
-    const Vec<4> q_to = to.segment<4>(3).normalized();
+    const Vec<4> q = from.segment<4>(kQuaternion).normalized();
+    const Vec<4> q_to = to.segment<4>(kQuaternion).normalized();
     const Vec<4> q_conj(q[0], -q[1], -q[2], -q[3]);
-    const Vec<3> v = from.segment<3>(7);
+    const Vec<3> v = from.segment<3>(kVelocity);
     const Vec<3> d = to.head<3>() - predicted.head<3>();
-    const Vec<3> dv = to.segment<3>(7) - v;
+    const Vec<3> dv = to.segment<3>(kVelocity) - v;
     // E(q) = 2 rows 1..3 of R_right(q^*): dq (x) q^* = R_right(q^*) dq.
     const Mat<4, 4> right_conj = quaternionRightMatrix(q_conj);
     const Mat<3, 4> E = 2.0 * right_conj.bottomRows<3>();

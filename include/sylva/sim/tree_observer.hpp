@@ -22,6 +22,7 @@
 #include "sylva/core/error.hpp"
 #include "sylva/core/quaternion.hpp"
 #include "sylva/core/types.hpp"
+#include "sylva/motion/pose_3d.hpp"
 #include "sylva/measurements/pinhole_camera.hpp"
 #include "sylva/measurements/tree_width.hpp"
 #include "sylva/sim/random.hpp"
@@ -69,7 +70,7 @@ class TreeObserver {
     } catch (const Error&) {
       return false;
     }
-    const Mat<3, 3> Rt = rotationMatrix<double>(Vec<4>(x.segment<4>(3).normalized())).transpose();
+    const Mat<3, 3> Rt = rotationMatrix<double>(Vec<4>(x.segment<4>(Pose3D::kQuaternion).normalized())).transpose();
     const Vec<3> n = Rt.col(2);
     const Vec<3> C = Rt * (tree.base - x.head<3>());
     depth = C.z();

@@ -1,0 +1,140 @@
+#pragma once
+/// @file
+/// `detail::LowerCovariance`: the filter's covariance storage and the block operations its
+/// predict and update are made of.
+///
+/// Storage: a capacity x capacity column-major matrix of which the top-left n x n corner is
+/// in use and only its lower triangle is authoritative (the entries above the diagonal are
+/// never read). Growing allocates new storage and copies the lower triangle; nothing else
+/// here allocates.
+///
+/// Every operation is a template on block sizes only: the robot's rows R, a landmark's rows
+/// L, a measurement's rows M. Filters that share those sizes share their instantiations, so
+/// a program with several filter types (an Ekf and a JosephEkf of the same robot, or two
+/// robots of three coordinates) compiles each kernel once (docs/build-time.md).
+
+#include <Eigen/Core>
+#include <algorithm>
+
+#include "sylva/core/types.hpp"
+
+namespace sylva::detail {
+
+class LowerCovariance {
+ public:
+  /// Rows and columns in use (n).
+  int dim() const { return n_; }
+  void setDim(int n) { n_ = n; }
+  int capacity() const { return capacity_; }
+
+  /// P(i, j), read from the lower triangle.
+  double operator()(int i, int j) const { return i >= j ? m_(i, j) : m_(j, i); }
+
+  /// The stored matrix: its lower triangle's top-left n x n corner is P.
+  Eigen::MatrixXd& stored() { return m_; }
+  const Eigen::MatrixXd& stored() const { return m_; }
+
+  /// The n x n corner in use (only its lower triangle is P).
+  auto inUse() { return m_.topLeftCorner(n_, n_); }
+  auto inUse() const { return m_.topLeftCorner(n_, n_); }
+
+  /// The R x C block of the full symmetric P starting at (row, col), for blocks that are
+  /// either on the diagonal or entirely off it.
+  template <int R, int C>
+  Mat<R, C> block(int row, int col) const {
+    if (row == col && R == C) {
+      Mat<R, C> out;
+      for (int j = 0; j < C; ++j)
+        for (int i = 0; i < R; ++i) out(i, j) = (*this)(row + i, col + j);
+      return out;
+    }
+    if (row >= col + C) return m_.template block<R, C>(row, col);
+    return m_.template block<C, R>(col, row).transpose();
+  }
+
+  /// New storage of `capacity` holding the lower triangle in use: allocates, and changes
+  /// nothing here (hand it to `adopt`).
+  Eigen::MatrixXd grown(int capacity) const {
+    Eigen::MatrixXd out = Eigen::MatrixXd::Zero(capacity, capacity);
+    out.topLeftCorner(n_, n_).template triangularView<Eigen::Lower>() = m_.topLeftCorner(n_, n_);
+    return out;
+  }
+  void adopt(Eigen::MatrixXd& storage) {
+    m_.swap(storage);
+    capacity_ = static_cast<int>(m_.rows());
+  }
+
+  /// Deletes rows and columns [off, off + d), moving the blocks after them up in place
+  /// (std::copy runs forwards, so an overlap is safe): no temporary, so it cannot fail.
+  void erase(int off, int d) {
+    const int tail = n_ - off - d;
+    if (tail > 0) {
+      // Columns left of the block: move their lower rows up by d.
+      for (int j = 0; j < off; ++j) {
+        double* col = m_.col(j).data();
+        std::copy(col + off + d, col + n_, col + off);
+      }
+      // Columns right of the block: move left by d and up by d.
+      for (int j = off; j < off + tail; ++j) {
+        const double* src = m_.col(j + d).data() + j + d;
+        double* dst = m_.col(j).data() + j;
+        std::copy(src, src + (n_ - j - d), dst);
+      }
+    }
+    n_ -= d;
+  }
+
+  /// P_rr <- P_rr_next (symmetrized), P_mr <- P_mr F^T: the robot block (the first R rows)
+  /// and its cross-covariances through a robot-only Jacobian F (eq. 2.27). O(n).
+  template <int R>
+  void transformRobotBlock(const Mat<R, R>& F, const Mat<R, R>& P_rr_next) {
+    m_.template topLeftCorner<R, R>() = 0.5 * (P_rr_next + P_rr_next.transpose());
+    // Lower storage holds P_mr (m x r).
+    for (int row = R; row < n_; ++row) {
+      const Vec<R> p = m_.row(row).template head<R>().transpose();
+      m_.row(row).template head<R>() = (F * p).transpose();
+    }
+  }
+
+  /// out(:, col0 .. col0 + M) += P H^T for one observation whose H has the blocks J_z_x
+  /// (the robot's R columns) and J_z_l (the landmark's L columns at offset o), reading the
+  /// robot and landmark columns of P from the lower triangle in three pieces each. O(n M).
+  template <int R, int L, typename Jx, typename Jl, typename Out>
+  void addTimesHt(const Jx& J_z_x, const Jl& J_z_l, int o, Out& out, int col0) const {
+    constexpr int M = Jx::RowsAtCompileTime;
+    auto dest = out.template middleCols<M>(col0);
+    // Robot columns of P (offset 0): rows [0, R) are the robot block, rows [R, n) are stored.
+    dest.template topRows<R>().noalias() += block<R, R>(0, 0) * J_z_x.transpose();
+    const int below_robot = n_ - R;
+    dest.bottomRows(below_robot).noalias() += m_.block(R, 0, below_robot, R) * J_z_x.transpose();
+    // Landmark columns of P at offset o: rows [0, o) are the transposed stored row block,
+    // rows [o, o + L) the diagonal block, rows [o + L, n) are stored.
+    dest.topRows(o).noalias() += m_.block(o, 0, L, o).transpose() * J_z_l.transpose();
+    dest.template middleRows<L>(o).noalias() += block<L, L>(o, o) * J_z_l.transpose();
+    const int below = n_ - o - L;
+    dest.bottomRows(below).noalias() += m_.block(o + L, o, below, L) * J_z_l.transpose();
+  }
+
+  /// H_a P H_b^T for two observations, each with a robot block (R columns) and one landmark
+  /// block (La columns at offset oa, Lb at ob): the cross term of a joint innovation
+  /// covariance, and with a = b the H P H^T of one. O(1) in n.
+  template <int R, typename JaX, typename JaL, typename JbX, typename JbL>
+  Mat<JaX::RowsAtCompileTime, JbX::RowsAtCompileTime> crossCovariance(const JaX& Ja_x, const JaL& Ja_l, int oa,
+                                                                      const JbX& Jb_x, const JbL& Jb_l, int ob) const {
+    constexpr int La = JaL::ColsAtCompileTime;
+    constexpr int Lb = JbL::ColsAtCompileTime;
+    const auto P_rr = block<R, R>(0, 0);
+    const auto P_rb = block<R, Lb>(0, ob);
+    const auto P_ar = block<La, R>(oa, 0);
+    const auto P_ab = block<La, Lb>(oa, ob);
+    return Ja_x * (P_rr * Jb_x.transpose() + P_rb * Jb_l.transpose()) +
+           Ja_l * (P_ar * Jb_x.transpose() + P_ab * Jb_l.transpose());
+  }
+
+ private:
+  Eigen::MatrixXd m_;
+  int n_ = 0;
+  int capacity_ = 0;
+};
+
+}  // namespace sylva::detail
