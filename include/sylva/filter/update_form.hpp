@@ -14,13 +14,15 @@
 ///
 /// Each form's kernels are templates on the measurement size M only (Eigen::Dynamic for a
 /// batch), not on the filter: every filter type with the same M shares them. The filter
-/// runs them in two steps around its own hooks (the invariant and observability-constrained
-/// corrections, the landmarks' domain checks), so that nothing of it is written before the
-/// last thing that can fail:
-///   increment(PHt, llt, nu, workspace, delta)   delta = P H^T S^-1 nu, and what the
-///                                               covariance step needs; writes workspaces only
-///   (the filter's hooks, then its mean)
-///   downdate(P, W)      or   posterior(...)     the covariance step
+/// runs them around its own hooks (the invariant and observability-constrained corrections,
+/// the landmarks' domain checks), so that nothing of it is written before the last thing that
+/// can fail:
+///   increment(PHt, llt, nu, workspace, delta)   delta = P H^T S^-1 nu, and the W or K the
+///                                               covariance step needs; workspaces only
+///   (the filter's hooks, which may refuse the update)
+///   JosephUpdate::posterior(...)                the Joseph posterior, into a workspace
+///   (the filter writes its mean)
+///   SymmetricUpdate::downdate(P, W), or the Joseph posterior copied into P
 
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
