@@ -63,7 +63,7 @@ NeesSeries simulateNees(double filter_scale, int runs, int steps, unsigned seed)
 }  // namespace
 
 TEST_CASE("a consistent estimator's averaged NEES stays inside the 95% bounds, a 2x wrong one outside",
-          "[consistency]") {
+          "[consistency][slow]") {
   // Over seeds 1-20. Per step the 50-run average of a 3-dof NEES is chi-square(150) / 50, so
   // each of the 400 independent steps is inside its 95% bounds with probability 0.95: the
   // share inside is binomial(400, 0.95) / 400, standard deviation 0.011, and [0.90, 0.99] lies

@@ -154,7 +154,7 @@ TEST_CASE("fault injection: the monocular filter's updates and reparametrization
 }
 
 TEST_CASE("fault injection: a large state, where Eigen's products may put their buffers on the heap",
-          "[filter][faults]") {
+          "[filter][faults][slow]") {
   // 1000 landmarks: n = 2003. The n x n products of the Joseph form's batched update pack
   // their operands into buffers larger than Eigen's stack limit (EIGEN_STACK_ALLOCATION_LIMIT,
   // 128 kB), which Eigen takes from the heap; before those products went into a workspace of

@@ -286,7 +286,8 @@ NeesEnsemble poseNees(LinearizationPoint point, int runs, unsigned seed) {
 
 }  // namespace unity_filter_first_estimates
 
-TEST_CASE("first estimates and the invariant EKF: the robot's NEES stays consistent where the textbook EKF's grows") {
+TEST_CASE("first estimates and the invariant EKF: the robot's NEES stays consistent where the textbook EKF's grows",
+          "[filter][consistency][slow]") {
   // Ten ensembles (seeds 1-10) of 30 runs, the three filters on the same noise (paired).
   const int runs = 30, seeds = 10;
   std::vector<double> textbook, first, invariant;

@@ -60,7 +60,7 @@ struct RangeBearingRefusingFar {
 
 }  // namespace
 
-TEST_CASE("the tiled lower rank update equals the dense one for every tile remainder", "[filter][fusion]") {
+TEST_CASE("the tiled lower rank update equals the dense one for every tile remainder", "[filter][fusion][slow]") {
   std::mt19937_64 rng(3);
   std::normal_distribution<double> normal;
   for (int m : {1, 2, 24, 300}) {
@@ -80,7 +80,7 @@ TEST_CASE("the tiled lower rank update equals the dense one for every tile remai
   }
 }
 
-TEST_CASE("a batched update over many tiles equals the dense update with stacked H", "[filter][fusion]") {
+TEST_CASE("a batched update over many tiles equals the dense update with stacked H", "[filter][fusion][slow]") {
   Filter ekf = mapWith(350, 5);  // n = 703: several tiles in both directions
   testing::DenseReferenceEkf<Unicycle2D> ref{Unicycle2D{}, ekf.robotMean(), ekf.robotCovariance()};
   ref.x = ekf.mean();

@@ -122,7 +122,7 @@ TEST_CASE("pose view: with the biases known to be zero the filter is the plain c
   }
 }
 
-TEST_CASE("pose view: the filter estimates the car's steering offset and speed scale error") {
+TEST_CASE("pose view: the filter estimates the car's steering offset and speed scale error", "[filter][slow]") {
   // A car whose steering reads 0.03 rad off and whose encoder reads 4% slow, among point
   // landmarks with a mounted range-bearing sensor; the filter starts with both biases at 0.
   const double dt = 0.2, true_offset = 0.03, true_scale = 0.04;

@@ -173,7 +173,7 @@ TEST_CASE("TreeWidth: a tree straight ahead at eye level gives the closed-form w
 }
 
 TEST_CASE("TreeWidth matches a brute-force projection of the base circle",
-          "[measurements][tree_width]") {
+          "[measurements][tree_width][slow]") {
   const TreeWidth model(kCamera);
   sim::Rng rng(20260301);
   int accepted = 0;

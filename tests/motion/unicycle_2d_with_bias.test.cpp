@@ -75,7 +75,7 @@ TEST_CASE("Unicycle2DWithBias: the pose view and its Jacobian", "[motion]") {
 }
 
 TEST_CASE("Unicycle2DWithBias: a filter recovers a simulated robot's gains, consistently over seeds",
-          "[motion][unicycle][filter][consistency]") {
+          "[motion][unicycle][filter][consistency][slow]") {
   // A robot whose gains are drawn from the filter's prior (zero mean, sigmas 0.1, 0.1,
   // 0.01 rad/s) drives 240 s of arcs among 12 landmarks; the filter starts at the true pose
   // and reads range and bearing with the noise it is told. Over 20 seeds, the mean NEES of

@@ -149,7 +149,7 @@ TEST_CASE("the observer's visibility and occlusion rules", "[sim][observer]") {
   CHECK(throwsCode([&] { TreeObserver(camera, options); }, ErrorCode::kInvalidArgument));
 }
 
-TEST_CASE("the default scenario is reproducible and sees trees in every frame", "[sim][scenario]") {
+TEST_CASE("the default scenario is reproducible and sees trees in every frame", "[sim][scenario][slow]") {
   const ForestScenario a = makeForestScenario(ForestScenarioOptions{}, 1);
   const ForestScenario b = makeForestScenario(ForestScenarioOptions{}, 1);
   REQUIRE(a.frames.size() == a.observations.size());
@@ -168,7 +168,7 @@ TEST_CASE("the default scenario is reproducible and sees trees in every frame", 
   CHECK(fewest >= 3);
 }
 
-TEST_CASE("the scenario's parts: thinned forests and other noise on the same forest", "[sim][scenario]") {
+TEST_CASE("the scenario's parts: thinned forests and other noise on the same forest", "[sim][scenario][slow]") {
   const ForestScenarioOptions options;
   const std::vector<Tree> trees = makeForestTrees(options, 7);
   // makeForestScenario is the composition of its parts.

@@ -187,7 +187,7 @@ TEST_CASE("UTIAS command fit on all five robots of Dataset 7 is the compiled def
 }
 
 TEST_CASE("UTIAS online gains: the fit sets their prior, and on Dataset 7 each robot learns them from scratch",
-          "[utias][data]") {
+          "[utias][data][slow]") {
   utias::NoiseConfig online;
   online.online_gains = true;
   utias::CommandFit fit;
