@@ -366,9 +366,10 @@ def victoria_park_figures(out):
 
 def forest_association_figures(out):
     """docs/slam.md: forest_slam's association without ids (--association nn) against the run
-    with the simulator's ids, per forest seed, for the pipeline with the tree-width sensor."""
+    with the simulator's ids, per forest seed, for the pipeline with the tree-width sensor; and
+    the median share taken right by each pipeline with and without occlusion (--no-occlusion)."""
     import statistics
-    seeds = sorted({int(k.split("_")[1]) for k in out})
+    seeds = sorted({int(k.split("_")[1]) for k in out if k.startswith("ids_")})
     rows, correct, el_ratio, et_ratio = [], [], [], []
     for seed in seeds:
         ids, nn = out[f"ids_{seed}"]["with_width"], out[f"nn_{seed}"]["with_width"]
@@ -377,16 +378,35 @@ def forest_association_figures(out):
         correct.append(a["correct_fraction"])
         el_ratio.append(ratio("landmark_error"))
         et_ratio.append(ratio("trajectory_error"))
-        rows.append([seed, a["sightings"], fixed(100 * a["correct_fraction"], 1), a["paired_wrong"], a["duplicates"],
-                     a["ambiguous"], fixed(el_ratio[-1], 2), fixed(et_ratio[-1], 2)])
+        rows.append([seed, a["sightings"], fixed(100 * a["correct_fraction"], 1), a["paired_wrong"],
+                     a["paired_before_own"], a["duplicates"], a["ambiguous"], fixed(el_ratio[-1], 2),
+                     fixed(et_ratio[-1], 2)])
+    pipelines = [("with_width", "tree width after XYZ (the thesis)"),
+                 ("width_first_sight", "tree width from the first sight (IDR)"),
+                 ("without_width", "no tree width")]
+    occlusion_rows, figures = [], {}
+    for key, name in pipelines:
+        median = lambda prefix: statistics.median(
+            100 * out[f"{prefix}_{seed}"][key]["association"]["correct_fraction"] for seed in seeds)
+        before_own = lambda prefix: statistics.median(
+            out[f"{prefix}_{seed}"][key]["association"]["paired_before_own"] /
+            max(1, out[f"{prefix}_{seed}"][key]["association"]["paired_wrong"]) for seed in seeds)
+        occlusion_rows.append([name, fixed(median("nn"), 1), fixed(100 * before_own("nn"), 0),
+                               fixed(median("nnvisible"), 1)])
+        figures[f"{key}_median_pct"] = fixed(median("nn"), 1)
+        figures[f"{key}_visible_median_pct"] = fixed(median("nnvisible"), 1)
     return {
         "seeds": f"{seeds[0]}-{seeds[-1]}",
-        "table": table(["forest seed", "sightings", "taken right (%)", "paired with another tree", "duplicate trees",
-                        "ambiguous", "e_l nn / ids", "e_t nn / ids"], rows),
+        "table": table(["forest seed", "sightings", "taken right (%)", "paired with another tree",
+                        "... while its own tree had none", "duplicate trees", "ambiguous", "e_l nn / ids",
+                        "e_t nn / ids"], rows),
+        "occlusion_table": table(["pipeline", "taken right (%), median", "wrong pairings while the own tree had none (%), median",
+                                  "taken right without occlusion (%), median"], occlusion_rows),
         "median_correct_pct": fixed(100 * statistics.median(correct), 1),
         "min_correct_pct": fixed(100 * min(correct), 1),
         "median_el_ratio": fixed(statistics.median(el_ratio), 2),
         "median_et_ratio": fixed(statistics.median(et_ratio), 2),
+        **figures,
     }
 
 
@@ -438,11 +458,15 @@ SOURCES = {
         "file": "docs/figures/forest-association.figures.json",
         "runs": {**{f"ids_{k}": f"{{bin}}/forest_slam/forest_slam --seed {k} --json --svg-prefix ''" for k in range(1, 11)},
                  **{f"nn_{k}": f"{{bin}}/forest_slam/forest_slam --seed {k} --association nn --json --svg-prefix ''"
-                    for k in range(1, 11)}},
+                    for k in range(1, 11)},
+                 **{f"nnvisible_{k}": f"{{bin}}/forest_slam/forest_slam --seed {k} --association nn --no-occlusion "
+                                      f"--json --svg-prefix ''" for k in range(1, 11)}},
         "quick": {**{f"ids_{k}": f"{{bin}}/forest_slam/forest_slam --seed {k} --frames 200 --json --svg-prefix ''"
                      for k in range(1, 3)},
                   **{f"nn_{k}": f"{{bin}}/forest_slam/forest_slam --seed {k} --frames 200 --association nn --json "
-                                f"--svg-prefix ''" for k in range(1, 3)}},
+                                f"--svg-prefix ''" for k in range(1, 3)},
+                  **{f"nnvisible_{k}": f"{{bin}}/forest_slam/forest_slam --seed {k} --frames 200 --association nn "
+                                       f"--no-occlusion --json --svg-prefix ''" for k in range(1, 3)}},
         "figures": forest_association_figures,
     },
     "victoria-park": {

@@ -53,33 +53,6 @@ template PoseNees cameraPoseNees<13>(const Vec<13>&, const Mat<13, 13>&, const V
 
 namespace {
 
-/// Adds one frame's association to the counts of `result` (see RunResult), and names the
-/// landmarks it started after their sightings' trees.
-void scoreAssociation(const std::vector<sylva::sim::TreeObservation>& observations,
-                      const FrameReport& report,
-                      std::unordered_map<Id, Id>& tree_of,
-                      RunResult& result) {
-  std::unordered_set<Id> mapped;  // trees with a landmark before this frame's new ones
-  for (const auto& entry : tree_of) mapped.insert(entry.second);
-  for (std::size_t i = 0; i < observations.size(); ++i) {
-    ++result.sightings;
-    const Id landmark = report.landmark_of[i];
-    const Id tree = observations[i].id;
-    if (landmark < 0) {
-      ++result.ambiguous;
-      continue;
-    }
-    const auto it = tree_of.find(landmark);
-    if (it != tree_of.end()) {
-      ++(it->second == tree ? result.paired_correct : result.paired_wrong);
-      continue;
-    }
-    tree_of.emplace(landmark, tree);
-    ++result.new_trees;
-    if (!mapped.insert(tree).second) ++result.duplicates;
-  }
-}
-
 template <typename Slam>
 RunResult runWith(const sylva::sim::ForestScenario& scenario,
                   const TreeSlamOptions& options,
@@ -117,7 +90,11 @@ RunResult runWith(const sylva::sim::ForestScenario& scenario,
     if (options.unbiased_point_uv) noise_free = noiseFreeOf(scenario.observations[k]);
     const FrameReport report =
         slam.processFrame(dt, sightingsOf(scenario.observations[k]), needs_truth ? &frame_truth : nullptr);
-    scoreAssociation(scenario.observations[k], report, tree_of, result);
+    {
+      std::vector<Id> trees;
+      for (const auto& o : scenario.observations[k]) trees.push_back(o.id);
+      result.association.addFrame(trees, report.landmark_of, tree_of);
+    }
     result.rejected += report.rejected;
     result.hypotheses += report.hypotheses;
     for (std::size_t t = 0; t < 4; ++t) result.nis[t].merge(report.nis[t]);

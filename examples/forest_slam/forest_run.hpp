@@ -25,6 +25,7 @@
 #include <vector>
 
 #include <sylva/consistency/camera_pose_nees.hpp>
+#include <sylva/eval/association_score.hpp>
 #include <sylva/eval.hpp>
 #include <sylva/sim/forest_scenario.hpp>
 
@@ -50,20 +51,8 @@ struct RunResult {
   /// IDR] over the whole run (FrameReport::nis).
   std::array<sylva::NisTally, 4> nis = FrameReport::emptyNisTallies();
   std::string failure;            ///< why an error could not be computed, if so
-  /// Association, scored with the simulator's ids (which TrunkAssociation::kNearestNeighbor
-  /// does not see): a landmark stands for the tree of the sighting that started it.
-  long sightings = 0;
-  long paired_correct = 0;  ///< sightings fused into a landmark of their own tree
-  long paired_wrong = 0;    ///< ... into a landmark of another tree
-  long new_trees = 0;       ///< sightings that started a landmark
-  long duplicates = 0;      ///< ... of a tree that already had one
-  long ambiguous = 0;       ///< dropped, neither paired nor clearly new
-  /// Sightings taken correctly: paired with their own tree's landmark, or starting the first
-  /// landmark of their tree.
-  double associationCorrectFraction() const {
-    return sightings > 0 ? static_cast<double>(paired_correct + new_trees - duplicates) / static_cast<double>(sightings)
-                         : 1.0;
-  }
+  /// Association without ids, scored with the simulator's ids.
+  sylva::AssociationScore association;
 };
 
 /// What a run leaves behind for drawing it.

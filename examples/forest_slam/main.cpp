@@ -157,10 +157,11 @@ nlohmann::json toJson(const RunResult& r) {
 
 /// The association counts of a run without ids (scored with the simulator's ids).
 nlohmann::json associationJson(const RunResult& r) {
-  return {{"sightings", r.sightings},         {"paired_correct", r.paired_correct},
-          {"paired_wrong", r.paired_wrong},   {"new_trees", r.new_trees},
-          {"duplicates", r.duplicates},       {"ambiguous", r.ambiguous},
-          {"correct_fraction", r.associationCorrectFraction()}};
+  const sylva::AssociationScore& a = r.association;
+  return {{"sightings", a.sightings},       {"paired_correct", a.paired_correct},
+          {"paired_wrong", a.paired_wrong}, {"paired_before_own", a.paired_before_own},
+          {"new_trees", a.new_trees},       {"duplicates", a.duplicates},
+          {"ambiguous", a.ambiguous},       {"correct_fraction", a.correctFraction()}};
 }
 
 /// The three pipelines on a recording (recording.hpp): CSV of each estimate at csv_prefix,
@@ -400,10 +401,11 @@ int main(int argc, char** argv) {
       row("trees inverse depth (or IDR) at end", [](const RunResult& r) { return double(r.by_type[0] + r.by_type[3]); }, "%.0f");
       row("observations refused", [](const RunResult& r) { return double(r.rejected); }, "%.0f");
       if (slam_options.association != sylva::slam::TrunkAssociation::kKnownIds) {
-        row("association: sightings taken right (%)", [](const RunResult& r) { return 100.0 * r.associationCorrectFraction(); }, "%.2f");
-        row("association: paired with another tree", [](const RunResult& r) { return double(r.paired_wrong); }, "%.0f");
-        row("association: duplicate trees", [](const RunResult& r) { return double(r.duplicates); }, "%.0f");
-        row("association: ambiguous, dropped", [](const RunResult& r) { return double(r.ambiguous); }, "%.0f");
+        row("association: sightings taken right (%)", [](const RunResult& r) { return 100.0 * r.association.correctFraction(); }, "%.2f");
+        row("association: paired with another tree", [](const RunResult& r) { return double(r.association.paired_wrong); }, "%.0f");
+        row("  of them, own tree not yet mapped", [](const RunResult& r) { return double(r.association.paired_before_own); }, "%.0f");
+        row("association: duplicate trees", [](const RunResult& r) { return double(r.association.duplicates); }, "%.0f");
+        row("association: ambiguous, dropped", [](const RunResult& r) { return double(r.association.ambiguous); }, "%.0f");
       }
       row("run time (s)", [](const RunResult& r) { return r.runtime_s; }, "%.2f");
       if (!svg_prefix.empty()) {
