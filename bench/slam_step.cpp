@@ -13,6 +13,12 @@
 ///   BM_StepBatchedUnusedTypes `Ekf<Odometry2D, Point2, Point3, TreeXYZR>` on the same steps:
 ///                             the extra landmark types are present but unused, so any
 ///                             difference to BM_StepBatched is the price of generality
+///   BM_StepBatchedWallOneThread, BM_StepBatchedWallTwoThreads
+///                             BM_StepBatched in wall-clock time, alone and with a
+///                             sylva::ThreadPool of 2 threads (Ekf::setParallel)
+///   BM_RankUpdateWallOneThread, BM_RankUpdateWallTwoThreads (the argument is n)
+///                             the tiled rank-24 update of the lower triangle alone, on one
+///                             thread and on two whatever n: where two start to pay
 ///   BM_BoundFullReadWrite     reads and writes every entry of an n x n matrix of doubles once,
 ///                             in place: the full-matrix bound of an update that touches all of P
 ///   BM_BoundLowerReadWrite    the same on the lower triangle only (half the bytes)
@@ -35,6 +41,8 @@
 
 #include "common/build_context.hpp"
 #include "scenario/sylva_circle_slam.hpp"
+#include "sylva/core/thread_pool.hpp"
+#include "sylva/detail/lower_rank_update.hpp"
 #include "sylva/landmarks/point3.hpp"
 #include "sylva/landmarks/tree_xyzr.hpp"
 
@@ -88,7 +96,7 @@ const Filter& endOfLapOne(int landmarks) {
 }
 
 template <typename Filter>
-void timeSteps(benchmark::State& state, sylva::Fusion fusion) {
+void timeSteps(benchmark::State& state, sylva::Fusion fusion, sylva::Parallel* parallel = nullptr) {
   const int landmarks = static_cast<int>(state.range(0));
   const World& w = worldOf(landmarks);
   const Filter& start = endOfLapOne<Filter>(landmarks);
@@ -97,6 +105,7 @@ void timeSteps(benchmark::State& state, sylva::Fusion fusion) {
   const auto noise = w.world.odometryNoise();
   const double dt = w.world.config().dt_s;
   Filter ekf = start;
+  ekf.setParallel(parallel);
   sylva_bench::StepScratch scratch;
   int k = 0;
   long observations = 0;
@@ -104,6 +113,7 @@ void timeSteps(benchmark::State& state, sylva::Fusion fusion) {
     if (k == timed) {
       state.PauseTiming();
       ekf = start;
+      ekf.setParallel(parallel);  // the copy took start's (none)
       k = 0;
       state.ResumeTiming();
     }
@@ -122,6 +132,33 @@ void timeSteps(benchmark::State& state, sylva::Fusion fusion) {
 void BM_StepBatched(benchmark::State& state) { timeSteps<PointFilter>(state, sylva::Fusion::kBatched); }
 void BM_StepSequential(benchmark::State& state) { timeSteps<PointFilter>(state, sylva::Fusion::kSequential); }
 void BM_StepBatchedUnusedTypes(benchmark::State& state) { timeSteps<MixedFilter>(state, sylva::Fusion::kBatched); }
+/// The batched step in wall-clock time, on the calling thread alone and with a ThreadPool of
+/// two (Ekf::setParallel): their ratio is what the second thread gains.
+void BM_StepBatchedWallOneThread(benchmark::State& state) { timeSteps<PointFilter>(state, sylva::Fusion::kBatched); }
+void BM_StepBatchedWallTwoThreads(benchmark::State& state) {
+  static sylva::ThreadPool pool(2);
+  timeSteps<PointFilter>(state, sylva::Fusion::kBatched, &pool);
+}
+
+/// P -= W W^T on the lower triangle (detail::subtractLowerRankUpdate) for a rank-24 W and an
+/// n x n P (the argument is n), on one thread and with a ThreadPool of two whatever n: where
+/// a second thread starts to pay (detail::kParallelMinRows).
+void timeRankUpdate(benchmark::State& state, sylva::Parallel* parallel) {
+  const int n = static_cast<int>(state.range(0));
+  Eigen::MatrixXd P = Eigen::MatrixXd::Identity(n, n);
+  const Eigen::MatrixXd W = Eigen::MatrixXd::Constant(n, 24, 1e-6);
+  for (auto _ : state) {
+    sylva::detail::subtractLowerRankUpdate(P, W, parallel, 0);
+    benchmark::ClobberMemory();
+  }
+  state.counters["n"] = n;
+  benchmark::DoNotOptimize(P.data());
+}
+void BM_RankUpdateWallOneThread(benchmark::State& state) { timeRankUpdate(state, nullptr); }
+void BM_RankUpdateWallTwoThreads(benchmark::State& state) {
+  static sylva::ThreadPool pool(2);
+  timeRankUpdate(state, &pool);
+}
 
 /// In-place read-modify-write of an n x n matrix (all of it, or its lower triangle): the
 /// bytes an update of P must move at least once. The factor alternates so the values stay put.
@@ -169,6 +206,10 @@ void mapSizes(benchmark::internal::Benchmark* b) {
 BENCHMARK(BM_StepBatched)->Apply(mapSizes)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_StepSequential)->Apply(mapSizes)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_StepBatchedUnusedTypes)->Apply(mapSizes)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_StepBatchedWallOneThread)->Apply(mapSizes)->UseRealTime()->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_StepBatchedWallTwoThreads)->Apply(mapSizes)->UseRealTime()->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_RankUpdateWallOneThread)->DenseRange(64, 1024, 64)->Arg(2003)->Arg(4003)->UseRealTime()->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_RankUpdateWallTwoThreads)->DenseRange(64, 1024, 64)->Arg(2003)->Arg(4003)->UseRealTime()->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_BoundFullReadWrite)->Apply(mapSizes)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_BoundLowerReadWrite)->Apply(mapSizes)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_GemmPeak)->Unit(benchmark::kMicrosecond);

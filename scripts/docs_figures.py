@@ -410,6 +410,41 @@ def forest_association_figures(out):
     }
 
 
+def threads_figures(out):
+    """docs/benchmarks.md: the batched step on one thread and with a ThreadPool of two
+    (bench/slam_step.cpp, wall-clock time). Repetitions are interleaved at random, so the
+    repetition i of both families ran close in time: the speed-up is taken per repetition
+    (paired) and given as its median and range."""
+    import statistics
+    unit = {"ns": 1e-9, "us": 1e-6, "ms": 1e-3, "s": 1.0}
+    runs = {}  # (family, N) -> {repetition: seconds}
+    dims = {}
+    for b in out["bench"]["benchmarks"]:
+        if b.get("run_type") == "aggregate" or b.get("error_occurred"):
+            continue
+        family, n = b["run_name"].split("/")[0], int(b["run_name"].split("/")[1])
+        runs.setdefault((family, n), {})[b.get("repetition_index", 0)] = b["real_time"] * unit[b["time_unit"]]
+        dims[n] = int(b["n"])
+    sizes = sorted({n for (_, n) in runs})
+    rows, figures = [], {}
+    time_text = lambda t: f"{t * 1e3:.3g} ms" if t >= 1e-3 else f"{t * 1e6:.3g} us"
+    for n in sizes:
+        one, two = runs[("BM_StepBatchedWallOneThread", n)], runs[("BM_StepBatchedWallTwoThreads", n)]
+        paired = [one[r] / two[r] for r in sorted(set(one) & set(two))]
+        speedup = statistics.median(paired)
+        rows.append([n, dims[n], time_text(statistics.median(one.values())), time_text(statistics.median(two.values())),
+                     f"{speedup:.2f}x [{min(paired):.2f}, {max(paired):.2f}]"])
+        figures[f"speedup_{n}"] = fixed(speedup, 2)
+        figures[f"speedup_{n}_min"] = fixed(min(paired), 2)
+        figures[f"speedup_{n}_max"] = fixed(max(paired), 2)
+    ctx = out["bench"]["context"]
+    figures["table"] = table(["N", "n", "one thread", "ThreadPool of 2", "speed-up, median [range] of paired repetitions"], rows)
+    figures["repetitions"] = str(len(paired))
+    figures["cpus"] = str(ctx.get("num_cpus", "?"))
+    figures["build"] = f"{ctx.get('compiler', '?').strip()}, {ctx.get('cxx_flags', '?')}, Eigen SIMD {ctx.get('eigen_simd', '?')}"
+    return figures
+
+
 SOURCES = {
     "range-bearing-slam": {
         "file": "docs/figures/range-bearing-slam.figures.json",
@@ -468,6 +503,15 @@ SOURCES = {
                   **{f"nnvisible_{k}": f"{{bin}}/forest_slam/forest_slam --seed {k} --frames 200 --association nn "
                                        f"--no-occlusion --json --svg-prefix ''" for k in range(1, 3)}},
         "figures": forest_association_figures,
+    },
+    "threads": {
+        "file": "docs/figures/threads.figures.json",
+        "runs": {"bench": "{bin}/../bench/bench_slam_step --benchmark_filter=BM_StepBatchedWall "
+                          "--benchmark_repetitions=5 --benchmark_enable_random_interleaving=true "
+                          "--benchmark_format=json"},
+        "quick": {"bench": "{bin}/../bench/bench_slam_step --benchmark_filter=BM_StepBatchedWall "
+                           "--benchmark_repetitions=2 --benchmark_min_time=0.001 --benchmark_format=json"},
+        "figures": threads_figures,
     },
     "victoria-park": {
         "file": "docs/examples/victoria-park.figures.json",

@@ -42,12 +42,12 @@ done
 # shellcheck source=lib/install_packages.sh
 source "$repo/scripts/lib/install_packages.sh"
 if [[ -z "$bin_dir" ]]; then
-  sylva_install_packages build-essential cmake libeigen3-dev libcli11-dev nlohmann-json3-dev libboost-math-dev python3
+  sylva_install_packages build-essential cmake libeigen3-dev libcli11-dev nlohmann-json3-dev libboost-math-dev libbenchmark-dev python3
   build="${SYLVA_BUILD_ROOT:-$repo/build}/docs"
   cmake -S "$repo" -B "$build" -DCMAKE_BUILD_TYPE=Release \
     ${SYLVA_CXX:+-DCMAKE_CXX_COMPILER="$SYLVA_CXX"} \
-    -DSYLVA_BUILD_TESTS=OFF -DSYLVA_BUILD_BENCHMARKS=OFF -DSYLVA_BUILD_EXAMPLES=ON >&2
-  targets=(--target range_bearing_slam parking laser_camera_slam moving_objects forest_slam)
+    -DSYLVA_BUILD_TESTS=OFF -DSYLVA_BUILD_BENCHMARKS=ON -DSYLVA_BUILD_EXAMPLES=ON >&2
+  targets=(--target range_bearing_slam parking laser_camera_slam moving_objects forest_slam bench_slam_step)
   ((pages)) && targets=()  # forest_seeds runs forest_slam from this build too
   cmake --build "$build" -j "${SYLVA_JOBS:-$(nproc)}" "${targets[@]}" >&2
   bin_dir="$build/examples"

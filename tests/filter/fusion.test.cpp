@@ -3,6 +3,7 @@
 
 #include <random>
 
+#include <sylva/core/thread_pool.hpp>
 #include <sylva/detail/lower_rank_update.hpp>
 #include <sylva/sylva.hpp>
 #include <sylva/testing/dense_reference_ekf.hpp>
@@ -78,6 +79,57 @@ TEST_CASE("the tiled lower rank update equals the dense one for every tile remai
       CHECK(maxAbsDiff(lower, expected_lower) < 1e-9 * expected.cwiseAbs().maxCoeff());
     }
   }
+}
+
+TEST_CASE("the tiled lower rank update gives the same bits on 1, 2 and 3 threads", "[filter][fusion]") {
+  std::mt19937_64 rng(4);
+  std::normal_distribution<double> normal;
+  ThreadPool two(2), three(3);
+  // Below detail::kParallelMinRows the update stays on the calling thread; above it, the
+  // tiles are shared out.
+  for (int m : {2, 24, 300}) {
+    for (int n : {639, 640, 700, 1100}) {
+      INFO("n = " << n << ", m = " << m);
+      Eigen::MatrixXd W(n, m), P(n, n);
+      for (Eigen::Index i = 0; i < W.size(); ++i) W.data()[i] = normal(rng);
+      for (Eigen::Index i = 0; i < P.size(); ++i) P.data()[i] = normal(rng);
+      Eigen::MatrixXd serial = P, on_two = P, on_three = P;
+      detail::subtractLowerRankUpdate(serial, W);
+      detail::subtractLowerRankUpdate(on_two, W, &two);
+      detail::subtractLowerRankUpdate(on_three, W, &three);
+      CHECK((on_two.array() == serial.array()).all());
+      CHECK((on_three.array() == serial.array()).all());
+      // The strictly upper part is left as it was.
+      CHECK((serial.triangularView<Eigen::StrictlyUpper>().toDenseMatrix().array() ==
+             P.triangularView<Eigen::StrictlyUpper>().toDenseMatrix().array())
+                .all());
+    }
+  }
+}
+
+TEST_CASE("batched updates with a ThreadPool give the serial filter's bits", "[filter][fusion]") {
+  ThreadPool pool(2);
+  const Filter start = mapWith(350, 6);  // n = 703, above detail::kParallelMinRows
+  static_assert(detail::kParallelMinRows <= 703, "this test must reach the threads");
+  Filter serial = start, threaded = start;
+  threaded.setParallel(&pool);
+  CHECK(threaded.parallel() == &pool);
+  const auto q = Gaussian<2>::sigmas(Vec<2>(0.2, 0.1));
+  for (int step = 0; step < 3; ++step) {
+    std::vector<Id> ids;
+    for (int k = 0; k < 12; ++k) ids.push_back((step * 41 + k * 29) % 350);
+    serial.update(RangeBearing{}, observe(serial, ids));
+    threaded.update(RangeBearing{}, observe(threaded, ids));
+    serial.predict(Vec<2>(1.0, 0.1), 0.2, q);
+    threaded.predict(Vec<2>(1.0, 0.1), 0.2, q);
+  }
+  CHECK((threaded.mean().array() == serial.mean().array()).all());
+  CHECK((threaded.covariance().array() == serial.covariance().array()).all());
+  // A copy shares the pool; nullptr goes back to one thread.
+  Filter copy = threaded;
+  CHECK(copy.parallel() == &pool);
+  copy.setParallel(nullptr);
+  CHECK(copy.parallel() == nullptr);
 }
 
 TEST_CASE("a batched update over many tiles equals the dense update with stacked H", "[filter][fusion][slow]") {

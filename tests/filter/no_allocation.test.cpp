@@ -5,6 +5,7 @@
 #include "eigen_allocation_hook.hpp"
 #include "replaced_operator_new.hpp"
 
+#include <sylva/core/thread_pool.hpp>
 #include <sylva/monocular.hpp>
 
 #include "sylva_catch.hpp"
@@ -97,30 +98,36 @@ TEMPLATE_TEST_CASE("the monocular tree filter's predict and updates do not alloc
 // A map big enough that one untiled rank-24 update would make Eigen pack its panels on the
 // heap (24 x 803 doubles > 128 KiB), and batches of changing size after the largest one.
 TEST_CASE("batched updates do not allocate in steady state, whatever the batch size", "[filter][allocation]") {
-  Ekf<Unicycle2D, Point2> ekf(Vec<3>(0.0, 0.0, 0.1), Mat<3, 3>::Identity() * 0.01);
-  const auto r = Gaussian<2>::sigmas(Vec<2>(0.05, 0.02));
-  const auto q = Gaussian<2>::sigmas(Vec<2>(0.05, 0.02));
-  for (int i = 0; i < 400; ++i) ekf.add(i, InverseRangeBearing{}, Vec<2>(3.0 + 0.05 * i, -1.5 + 0.0075 * i), r);
-  std::vector<Observation<RangeBearing>> batch;
-  batch.reserve(12);
-  auto observe = [&](int k, int first) {
-    batch.clear();
-    for (int j = 0; j < k; ++j) {
-      const Id id = (first + 33 * j) % 400;
-      const Vec<2> z = RangeBearing{}(ekf.robotMean(), ekf.landmarkMean<Point2>(id)) + Vec<2>(0.01, -0.002);
-      batch.push_back(Observation<RangeBearing>{id, z, r});
-    }
-    ekf.update(RangeBearing{}, batch);
-  };
-  observe(12, 0);  // warm-up with the largest batch: sizes the workspaces
+  ThreadPool pool(2);  // its threads are made here, before anything is counted
+  static_assert(detail::kParallelMinRows <= 803, "the map below must reach the threads");
+  for (Parallel* parallel : {static_cast<Parallel*>(nullptr), static_cast<Parallel*>(&pool)}) {
+    INFO((parallel == nullptr ? "one thread" : "a ThreadPool of 2 (n = 803: its threads take part)"));
+    Ekf<Unicycle2D, Point2> ekf(Vec<3>(0.0, 0.0, 0.1), Mat<3, 3>::Identity() * 0.01);
+    ekf.setParallel(parallel);
+    const auto r = Gaussian<2>::sigmas(Vec<2>(0.05, 0.02));
+    const auto q = Gaussian<2>::sigmas(Vec<2>(0.05, 0.02));
+    for (int i = 0; i < 400; ++i) ekf.add(i, InverseRangeBearing{}, Vec<2>(3.0 + 0.05 * i, -1.5 + 0.0075 * i), r);
+    std::vector<Observation<RangeBearing>> batch;
+    batch.reserve(12);
+    auto observe = [&](int k, int first) {
+      batch.clear();
+      for (int j = 0; j < k; ++j) {
+        const Id id = (first + 33 * j) % 400;
+        const Vec<2> z = RangeBearing{}(ekf.robotMean(), ekf.landmarkMean<Point2>(id)) + Vec<2>(0.01, -0.002);
+        batch.push_back(Observation<RangeBearing>{id, z, r});
+      }
+      ekf.update(RangeBearing{}, batch);
+    };
+    observe(12, 0);  // warm-up with the largest batch: sizes the workspaces
 
-  const long before = g_allocations.load();
-  Eigen::internal::set_is_malloc_allowed(false);
-  for (int step = 0; step < 6; ++step) {
-    ekf.predict(Vec<2>(0.5, 0.05), 0.1, q);
-    observe(12 - step, step);
+    const long before = g_allocations.load();
+    Eigen::internal::set_is_malloc_allowed(false);
+    for (int step = 0; step < 6; ++step) {
+      ekf.predict(Vec<2>(0.5, 0.05), 0.1, q);
+      observe(12 - step, step);
+    }
+    Eigen::internal::set_is_malloc_allowed(true);
+    CHECK(g_allocations.load() - before == 0);
+    CHECK(g_other_eigen_asserts.load() == 0);
   }
-  Eigen::internal::set_is_malloc_allowed(true);
-  CHECK(g_allocations.load() - before == 0);
-  CHECK(g_other_eigen_asserts.load() == 0);
 }

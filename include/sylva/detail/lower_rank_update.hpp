@@ -18,7 +18,16 @@
 #include <Eigen/Core>
 #include <algorithm>
 
+#include "sylva/core/parallel.hpp"
+
 namespace sylva::detail {
+
+/// Rows of P below which an update stays on the calling thread. Work is shared out in whole
+/// tiles (up to 256 x 256), so a small P has too few of them to split evenly: at n = 512 two
+/// threads get a quarter and three quarters of the work, and lose to one. From about n = 640
+/// the rank-24 update runs clearly faster on two (bench/slam_step.cpp,
+/// BM_RankUpdateWallOneThread against BM_RankUpdateWallTwoThreads).
+constexpr Eigen::Index kParallelMinRows = 640;
 
 /// Side of the square tiles for a rank-m update: the largest multiple of 8 (at most 256)
 /// whose m x tile panel of doubles fits Eigen's stack allocation limit.
@@ -28,21 +37,62 @@ inline int lowerRankUpdateTile(int m) {
   return std::clamp(fit / 8 * 8, 8, 256);
 }
 
-/// P <- P - W W^T, lower triangle only (the strictly upper part of P is not read; the upper
-/// part of diagonal tiles is not written). P is n x n, W is n x m.
-template <typename PBlock, typename WMatrix>
-void subtractLowerRankUpdate(PBlock&& P, const WMatrix& W) {
-  const Eigen::Index n = P.rows();
-  const Eigen::Index tile = lowerRankUpdateTile(static_cast<int>(W.cols()));
+/// The tiles of the lower triangle of an n x n matrix, column block by column block and top to
+/// bottom, that part `part` of `parts` takes: consecutive runs of equal work (a tile's rows
+/// times its columns, half of that on the diagonal). f(i0, bi, j0, bj) is called for each.
+/// Each tile is computed the same way whoever takes it, so the result does not depend on
+/// `parts`.
+template <typename F>
+void forEachTileOfPart(Eigen::Index n, Eigen::Index tile, int part, int parts, F&& f) {
+  const auto cost = [](Eigen::Index bi, Eigen::Index bj, bool diagonal) {
+    return static_cast<double>(bi) * static_cast<double>(bj) * (diagonal ? 0.5 : 1.0);
+  };
+  const double total = 0.5 * static_cast<double>(n) * static_cast<double>(n);
+  double done = 0.0;
   for (Eigen::Index j0 = 0; j0 < n; j0 += tile) {
     const Eigen::Index bj = std::min(tile, n - j0);
-    const auto W_j = W.middleRows(j0, bj);
-    P.block(j0, j0, bj, bj).template selfadjointView<Eigen::Lower>().rankUpdate(W_j, -1.0);
-    for (Eigen::Index i0 = j0 + bj; i0 < n; i0 += tile) {
-      const Eigen::Index bi = std::min(tile, n - i0);
-      P.block(i0, j0, bi, bj).noalias() -= W.middleRows(i0, bi) * W_j.transpose();
+    for (Eigen::Index i0 = j0; i0 < n; i0 += (i0 == j0 ? bj : tile)) {
+      const Eigen::Index bi = i0 == j0 ? bj : std::min(tile, n - i0);
+      const double c = cost(bi, bj, i0 == j0);
+      // The part whose share holds the tile's middle takes it.
+      const int owner = std::min(parts - 1, static_cast<int>((done + 0.5 * c) / total * parts));
+      done += c;
+      if (owner == part) f(i0, bi, j0, bj);
     }
   }
+}
+
+/// P <- P - W W^T, lower triangle only (the strictly upper part of P is not read; the upper
+/// part of diagonal tiles is not written). P is n x n, W is n x m. With `parallel`, and n of
+/// at least `min_rows`, the tiles are shared among its threads; the result is the same bit
+/// for bit.
+template <typename PBlock, typename WMatrix>
+void subtractLowerRankUpdate(PBlock&& P, const WMatrix& W, Parallel* parallel = nullptr,
+                             Eigen::Index min_rows = kParallelMinRows) {
+  const Eigen::Index n = P.rows();
+  const Eigen::Index tile = lowerRankUpdateTile(static_cast<int>(W.cols()));
+  const auto updateTile = [&](Eigen::Index i0, Eigen::Index bi, Eigen::Index j0, Eigen::Index bj) {
+    const auto W_j = W.middleRows(j0, bj);
+    if (i0 == j0) {
+      P.block(j0, j0, bj, bj).template selfadjointView<Eigen::Lower>().rankUpdate(W_j, -1.0);
+    } else {
+      P.block(i0, j0, bi, bj).noalias() -= W.middleRows(i0, bi) * W_j.transpose();
+    }
+  };
+  const int parts = parallel != nullptr && n >= min_rows ? parallel->concurrency() : 1;
+  if (parts <= 1) {
+    forEachTileOfPart(n, tile, 0, 1, updateTile);
+    return;
+  }
+  struct Job {
+    const decltype(updateTile)* update;
+    Eigen::Index n, tile;
+    int parts;
+  } job{&updateTile, n, tile, parts};
+  parallel->run(parts, [](void* context, int part) {
+    const Job& j = *static_cast<const Job*>(context);
+    forEachTileOfPart(j.n, j.tile, part, j.parts, *j.update);
+  }, &job);
 }
 
 }  // namespace sylva::detail

@@ -44,6 +44,7 @@
 
 #include "sylva/core/error.hpp"
 #include "sylva/core/jacobian_ref.hpp"
+#include "sylva/core/parallel.hpp"
 #include "sylva/core/gauge.hpp"
 #include "sylva/core/types.hpp"
 #include "sylva/detail/model_traits.hpp"
@@ -330,6 +331,14 @@ class BasicEkf {
   /// The left inverse of the observability-constrained update's transport (GaugeInverse).
   void setGaugeInverse(GaugeInverse inverse) { gauge_inverse_choice_ = inverse; }
   GaugeInverse gaugeInverse() const { return gauge_inverse_choice_; }
+
+  /// Threads for the large parts of a batched update (W = P H^T L^-T and P -= W W^T) once
+  /// the state has detail::kParallelMinRows rows or more; the result is the same bit for bit
+  /// as without. Not owned: it must outlive the updates that use it (copies of this filter
+  /// share it). nullptr, the default, keeps everything on the calling thread. See
+  /// core/thread_pool.hpp.
+  void setParallel(Parallel* parallel) { parallel_ = parallel; }
+  Parallel* parallel() const { return parallel_; }
 
   /// The robot's true state, for LinearizationPoint::kIdeal: predict linearizes the motion
   /// about it, and updates the measurement models. Each predict uses it up, so hand
@@ -627,8 +636,15 @@ class BasicEkf {
     // P H^T and S = H P H^T + R (lower triangle, block (a, b) for b <= a, from the columns of
     // P H^T) for the linearizations in `lins`.
     const auto formInnovationCovariance = [&] {
-      PHt.setZero();
-      for (int a = 0; a < k; ++a) cov_.template addTimesHt<kRobotDim, L>(lins.J_z_x(a), lins.J_z_l(a), lins.offset(a), PHt, a * M);
+      // Each observation's columns of P H^T on their own: shared among the threads of a
+      // large state (setParallel), with the same result.
+      const auto formPHt = [&](int first, int last) {
+        for (int a = first; a < last; ++a) {
+          PHt.middleCols(a * M, M).setZero();
+          cov_.template addTimesHt<kRobotDim, L>(lins.J_z_x(a), lins.J_z_l(a), lins.offset(a), PHt, a * M);
+        }
+      };
+      runRanges(parallel_, k, parallel_ != nullptr && dim() >= detail::kParallelMinRows ? parallel_->concurrency() : 1, formPHt);
       for (int a = 0; a < k; ++a) {
         const int off = lins.offset(a);
         for (int b = 0; b <= a; ++b) {
@@ -1214,7 +1230,7 @@ class BasicEkf {
     revision_ = detail::nextRevision();
     auto P = cov_.inUse();
     auto delta = meanIncrement();
-    const auto gain = UpdateForm::template increment<M>(PHt, llt, nu, batch_, delta);
+    const auto gain = UpdateForm::template increment<M>(PHt, llt, nu, batch_, delta, parallel_);
     toInvariantIncrement(delta);
     prepareGaugeTransport(delta);
     checkPosteriorDomain(delta);  // may throw; nothing of the filter is written yet
@@ -1226,7 +1242,7 @@ class BasicEkf {
       (void)R;
       (void)applyHt;
       applyMeanIncrement(delta);
-      SymmetricUpdate::downdate<M>(P, gain);
+      SymmetricUpdate::downdate<M>(P, gain, parallel_);
     }
     carryCovarianceToPosterior();
     carryCovarianceAlongGauge();
@@ -1518,6 +1534,7 @@ class BasicEkf {
   Eigen::VectorXd ideal_;
   LinearizationPoint linearization_ = LinearizationPoint::kCurrentEstimate;
   IteratedUpdate iterated_;
+  Parallel* parallel_ = nullptr;  ///< see setParallel
   detail::LowerCovariance cov_;  ///< the covariance (lower triangle) and the state dimension n
   detail::SlotTable slots_;  ///< where each landmark's block lies
   Eigen::VectorXd workspace_a_;

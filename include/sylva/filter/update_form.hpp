@@ -29,6 +29,7 @@
 #include <algorithm>
 #include <vector>
 
+#include "sylva/core/parallel.hpp"
 #include "sylva/detail/lower_rank_update.hpp"
 
 namespace sylva {
@@ -75,9 +76,11 @@ struct SymmetricUpdate {
 
   /// delta = W L^-1 nu with W = P H^T L^-T (L: the Cholesky factor of S), returning W for
   /// `downdate`. `PHt` (n x M) is P H^T; for a fixed M it is overwritten by W.
+  /// With `parallel`, a batch's rows of W are shared among its threads (the same result).
   template <int M, typename PHtMap, typename Llt, typename Nu, typename Delta>
   static Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, M>> increment(PHtMap& PHt, const Llt& llt, const Nu& nu,
-                                                                         detail::BatchWorkspace& ws, Delta& delta) {
+                                                                         detail::BatchWorkspace& ws, Delta& delta,
+                                                                         Parallel* parallel = nullptr) {
     const int n = static_cast<int>(PHt.rows());
     if constexpr (M == Eigen::Dynamic) {
       // W = PHt L^-T as a product with the explicit (small, triangular) L^-1: Eigen's blocked
@@ -89,10 +92,16 @@ struct SymmetricUpdate {
       llt.matrixL().solveInPlace(L_inv);
       auto W = ws.gainMatrix<Eigen::Dynamic>(n, cols);
       const int block = detail::lowerRankUpdateTile(cols);
-      for (int r0 = 0; r0 < n; r0 += block) {
-        const int rows = std::min(block, n - r0);
-        W.middleRows(r0, rows).noalias() = PHt.middleRows(r0, rows) * L_inv.transpose();  // L^-1 has zeros above
-      }
+      const int blocks = (n + block - 1) / block;
+      const auto rowBlocks = [&](int first, int last) {
+        for (int b = first; b < last; ++b) {
+          const int r0 = b * block;
+          const int rows = std::min(block, n - r0);
+          W.middleRows(r0, rows).noalias() = PHt.middleRows(r0, rows) * L_inv.transpose();  // L^-1 has zeros above
+        }
+      };
+      const int parts = parallel != nullptr && n >= detail::kParallelMinRows ? parallel->concurrency() : 1;
+      runRanges(parallel, blocks, parts, rowBlocks);
       auto v = ws.vector(detail::BatchWorkspace::kWhitenedInnovation, cols);
       v.noalias() = L_inv * nu;
       delta.noalias() = W * v;
@@ -106,10 +115,12 @@ struct SymmetricUpdate {
   }
 
   /// P -= W W^T on the lower triangle of P (n x n).
+  /// With `parallel`, a batch's tiles of P are shared among its threads (the same result).
   template <int M, typename PBlock>
-  static void downdate(PBlock&& P, const Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, M>>& W) {
+  static void downdate(PBlock&& P, const Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, M>>& W,
+                       Parallel* parallel = nullptr) {
     if constexpr (M == Eigen::Dynamic) {
-      detail::subtractLowerRankUpdate(P, W);  // a tiled symmetric rank-km update
+      detail::subtractLowerRankUpdate(P, W, parallel);  // a tiled symmetric rank-km update
     } else {
       // One column at a time: a fixed-size GEMV per column, one pass over half of P.
       const int n = static_cast<int>(P.rows());
@@ -127,7 +138,8 @@ struct JosephUpdate {
   /// delta = K nu with K = P H^T S^-1, returning K (kept in the workspace) for `posterior`.
   template <int M, typename PHtMap, typename Llt, typename Nu, typename Delta>
   static Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, M>> increment(const PHtMap& PHt, const Llt& llt, const Nu& nu,
-                                                                         detail::BatchWorkspace& ws, Delta& delta) {
+                                                                         detail::BatchWorkspace& ws, Delta& delta,
+                                                                         Parallel* /*parallel: serial*/ = nullptr) {
     auto K = ws.gainMatrix<M>(static_cast<int>(PHt.rows()), static_cast<int>(PHt.cols()));
     K = PHt;
     llt.matrixU().template solveInPlace<Eigen::OnTheRight>(K);
