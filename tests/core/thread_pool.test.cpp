@@ -56,16 +56,19 @@ TEST_CASE("ThreadPool returns only when every part has finished, and runs one ca
     s.finished.fetch_add(1);
   };
   // Two callers share the pool: their runs take turns, so at most 3 parts run at once.
+  // (Catch2's assertions are for the test's own thread: the other caller counts its misses.)
+  std::atomic<int> early_returns{0};
   const auto caller = [&] {
     for (int r = 0; r < 300; ++r) {
       const long before = shared.finished.load();
       pool.run(3, task, &shared);
-      CHECK(shared.finished.load() - before >= 3);
+      if (shared.finished.load() - before < 3) early_returns.fetch_add(1);
     }
   };
   std::thread other(caller);
   caller();
   other.join();
+  CHECK(early_returns.load() == 0);
   CHECK(shared.finished.load() == 2 * 300 * 3);
   CHECK(shared.most.load() <= 3);
   CHECK(shared.inside.load() == 0);
