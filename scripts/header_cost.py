@@ -282,13 +282,16 @@ def render(result, cpu):
         add("The filter's linearization policies are chosen at run time (`setLinearizationPoint`), so "
             "one `update` compiles the code of every policy that applies to the filter's types (the "
             "iterated update's iterations, first-estimates and ideal linearization points, the "
-            "invariant EKF's transport for a planar robot), and each distinct small matrix size "
-            "compiles Eigen's Cholesky factorization once more (here the prior's check in the "
-            "constructor, `checkCovariance<3>`, and the factor of S in `update`). A restructuring of "
-            "`ekf.hpp` (kernels that depend only on block sizes, policies compiled only where they are "
-            "chosen) would narrow the sample's factor over the hand-written floor in the tables above; "
-            "no restructuring can take the sample below that floor while it does the same work with "
-            "Eigen's fixed-size expressions, so a target below the floor is out of reach for the "
+            "invariant EKF's transport for a planar robot). The check of a noise's or a prior's "
+            "covariance is compiled once for every size (`detail::checkCovarianceMatrix`, which "
+            "factors through the batched update's own Cholesky type). The arithmetic keeps its fixed "
+            "sizes, so each distinct small size compiles its products and the factorization of S "
+            "once more: with sizes known only at run time Eigen orders some sums differently (for "
+            "an odd number of rows), which changes the last bits of every result built on them. "
+            "Policies compiled only where they are chosen would narrow the sample's factor over the "
+            "hand-written floor in the tables above; no restructuring can take the sample below that "
+            "floor while it does the same work with Eigen's fixed-size expressions, so a target below "
+            "the floor is out of reach for the "
             "sample as it stands.")
         add("")
     return "\n".join(lines) + "\n", figures

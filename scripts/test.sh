@@ -13,6 +13,11 @@
 #                                        runs their smoke runs and the repository checks, but
 #                                        not the unit tests: CI's split (.ci/run), which
 #                                        builds and runs the unit tests under the sanitizers
+#   bash scripts/test.sh --overlap       runs the Release phase beside the sanitizer and
+#                                        consumer phases instead of before them (each line
+#                                        of output carries its phase's name); the build
+#                                        directories stay apart, so it only fills the cores
+#                                        that one phase leaves idle in its slowest steps
 #
 # Missing Debian packages are installed with apt-get (as root, or through sudo).
 # Environment: SYLVA_BUILD_ROOT (default <repo>/build) holds the build directories,
@@ -26,11 +31,12 @@
 # sylva_add_example_smoke_test() (see the top-level CMakeLists.txt), label "smoke".
 set -euo pipefail
 
-usage() { sed -n '2,26p' "$0" | sed 's/^# \{0,1\}//'; }
+usage() { sed -n '2,31p' "$0" | sed 's/^# \{0,1\}//'; }
 
 run_main=1
 run_sanitize=0
 run_consumer=0
+overlap=0
 unit_tests=ON
 for arg in "$@"; do
   case "$arg" in
@@ -38,6 +44,7 @@ for arg in "$@"; do
     --consumer) run_consumer=1 ;;
     --skip-main) run_main=0 ;;
     --examples-only) unit_tests=OFF ;;
+    --overlap) overlap=1 ;;
     -h | --help) usage; exit 0 ;;
     *) echo "test.sh: unknown option '$arg'" >&2; usage >&2; exit 2 ;;
   esac
@@ -61,11 +68,14 @@ source "$repo/scripts/lib/install_packages.sh"
 sylva_install_packages "${packages[@]}"
 
 phase_start=0
-recap=()
+# The recap is a file, so that a phase run in the background (--overlap) adds to it too.
+mkdir -p "$build_root"
+recap_file="$build_root/test-recap.txt"
+: >"$recap_file"
 begin() { echo; echo "==> $1"; phase_start=$SECONDS; }
 finish() {
   echo "==> $1 done in $((SECONDS - phase_start)) s"
-  recap+=("$(printf '%-28s %5d s  %s' "$1" "$((SECONDS - phase_start))" "${2:-}")")
+  printf '%-28s %5d s  %s\n' "$1" "$((SECONDS - phase_start))" "${2:-}" >>"$recap_file"
 }
 # Runs ctest in build directory $1 (extra environment in the remaining arguments) and keeps
 # its summary line ("100% tests passed, 0 tests failed out of N") for the recap.
@@ -79,7 +89,7 @@ run_ctest() {
 }
 
 # ---- Release: tests, examples and benchmarks ---------------------------------------------
-if ((run_main)); then
+main_phase() {
   what="tests, examples, benchmarks"
   if [[ "$unit_tests" == OFF ]]; then what="examples, benchmarks, their smoke runs"; fi
   begin "Release build ($what, ${SYLVA_CXX:-c++}) in $build_root/test"
@@ -95,7 +105,7 @@ if ((run_main)); then
   begin "ctest (Release)"
   run_ctest "$build_root/test"
   finish "ctest (Release)" "$summary"
-fi
+}
 
 # ---- AddressSanitizer + UndefinedBehaviorSanitizer ---------------------------------------
 # -O0 -g1 with assertions on (no NDEBUG, so Eigen checks indices and sizes too): clang++
@@ -106,7 +116,7 @@ fi
 # (SYLVA_SANITIZE_CXX overrides it): the tests are template-heavy and g++ 12 spends about 3x
 # longer on them (no_allocation.test.cpp: 110 s with g++ -O2, 34 s with clang++ -O2), and a
 # second compiler catches what one misses.
-if ((run_sanitize)); then
+sanitize_phase() {
   begin "ASan+UBSan build (tests, ${SYLVA_SANITIZE_CXX:-clang++}) in $build_root/sanitize"
   cmake -S "$repo" -B "$build_root/sanitize" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
     -DCMAKE_CXX_COMPILER="${SYLVA_SANITIZE_CXX:-clang++}" \
@@ -120,10 +130,10 @@ if ((run_sanitize)); then
     ASAN_OPTIONS="detect_leaks=1:strict_string_checks=1:detect_stack_use_after_return=1" \
     UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
   finish "ctest (ASan+UBSan)" "$summary"
-fi
+}
 
 # ---- downstream consumer of the installed package ----------------------------------------
-if ((run_consumer)); then
+consumer_phase() {
   begin "install + tests/consumer"
   tmp="$(mktemp -d "${TMPDIR:-/tmp}/sylva-consumer.XXXXXX")"
   trap 'rm -rf "$tmp"' EXIT
@@ -140,8 +150,36 @@ if ((run_consumer)); then
   cmake --build "$tmp/consumer-build" -j "$jobs"
   "$tmp/consumer-build/sylva_consumer"
   finish "install + tests/consumer" "consumer passed"
+}
+
+# Prefixes each line of a phase's output with its name (--overlap interleaves two phases).
+label() { sed -u "s/^/[$1] /"; }
+
+if ((overlap && run_main && (run_sanitize || run_consumer))); then
+  # The Release phase beside the sanitizer phase (then the consumer); both must pass. Make
+  # and ctest keep their -j, so up to twice as many jobs run as there are cores. Both are
+  # background jobs, so that `set -e` holds inside each (in a subshell on the left of `||`
+  # bash would ignore it).
+  (main_phase) 2>&1 | label release &
+  main_pid=$!
+  ( if ((run_sanitize)); then sanitize_phase; fi
+    if ((run_consumer)); then consumer_phase; fi ) 2>&1 | label sanitize &
+  rest_pid=$!
+  main_status=0
+  rest_status=0
+  if ! wait "$rest_pid"; then rest_status=1; fi
+  if ! wait "$main_pid"; then main_status=1; fi
+  if ((main_status || rest_status)); then
+    echo "test.sh: a phase failed (Release: $( ((main_status)) && echo failed || echo passed)," \
+      "sanitizer and consumer: $( ((rest_status)) && echo failed || echo passed))" >&2
+    exit 1
+  fi
+else
+  if ((run_main)); then main_phase; fi
+  if ((run_sanitize)); then sanitize_phase; fi
+  if ((run_consumer)); then consumer_phase; fi
 fi
 
 echo
 echo "==> scripts/test.sh $* passed:"
-printf '    %s\n' "${recap[@]}"
+sed 's/^/    /' "$recap_file"

@@ -131,3 +131,22 @@ TEST_CASE("batched updates do not allocate in steady state, whatever the batch s
     CHECK(g_other_eigen_asserts.load() == 0);
   }
 }
+
+TEST_CASE("building a noise from a full covariance allocates nothing", "[filter][allocation]") {
+  // Gaussian::covariance checks its matrix through detail::checkCovarianceMatrix, which
+  // factors on the stack up to 16 x 16: a sensor may build its noise per reading.
+  Mat<4, 4> cov = Mat<4, 4>::Identity();
+  cov(1, 0) = cov(0, 1) = 0.3;
+  Mat<13, 13> big = Mat<13, 13>::Identity() * 2.0;
+  big(12, 3) = big(3, 12) = -0.5;
+  const long before = g_allocations.load();
+  Eigen::internal::set_is_malloc_allowed(false);
+  double sum = 0.0;
+  for (int i = 0; i < 10; ++i) {
+    sum += Gaussian<4>::covariance(cov).covariance()(1, 0);
+    sum += Gaussian<13>::covariance(big).covariance()(12, 3);
+  }
+  Eigen::internal::set_is_malloc_allowed(true);
+  CHECK(g_allocations.load() - before == 0);
+  CHECK(sum == Approx(10 * (0.3 - 0.5)));
+}

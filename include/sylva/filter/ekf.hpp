@@ -42,6 +42,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "sylva/core/covariance_check.hpp"
 #include "sylva/core/error.hpp"
 #include "sylva/core/jacobian_ref.hpp"
 #include "sylva/core/parallel.hpp"
@@ -268,7 +269,7 @@ class BasicEkf {
       : robot_(robot) {
     if (!x0.allFinite()) fail(ErrorCode::kNonFinite, "Ekf: initial robot state is not finite");
     checkRobotDomain(x0, "Ekf: initial robot state");
-    checkCovariance(P0, "Ekf: initial robot covariance");
+    detail::checkCovarianceMatrix(P0, detail::Definiteness::kPositiveSemi, "Ekf: initial robot covariance");
     reserve(0);
     robot_mean_ = x0;
     robot_first_ = x0;
@@ -1089,21 +1090,6 @@ class BasicEkf {
   template <typename T>
   static std::string nameOf() {
     return std::string(T::kName);
-  }
-
-  template <int R>
-  static void checkCovariance(const Mat<R, R>& P, const char* what) {
-    if (!P.allFinite()) fail(ErrorCode::kNonFinite, std::string(what) + " is not finite");
-    const double scale = std::max(1.0, P.cwiseAbs().maxCoeff());
-    if ((P - P.transpose()).cwiseAbs().maxCoeff() > 1e-9 * scale)
-      fail(ErrorCode::kInvalidArgument, std::string(what) + " is not symmetric");
-    // P has no eigenvalue below -tol (tol = 1e-12 of its largest entry) exactly when P + tol I
-    // is positive definite, which a Cholesky factorization decides: its backward error, about
-    // R eps |P|, is far below tol, so round-off cannot turn the verdict.
-    Mat<R, R> shifted = 0.5 * (P + P.transpose());
-    shifted.diagonal().array() += 1e-12 * scale;
-    if (Eigen::LLT<Mat<R, R>>(shifted).info() != Eigen::Success)
-      fail(ErrorCode::kNotPositiveDefinite, std::string(what) + " is not positive semi-definite");
   }
 
   std::size_t slotIndex(Id id) const {

@@ -40,16 +40,23 @@ class LowerCovariance {
 
   /// The R x C block of the full symmetric P starting at (row, col), for blocks that are
   /// either on the diagonal or entirely off it.
+  /// Plain loops rather than Eigen block expressions: each (R, C) would instantiate its own
+  /// block and transpose types (docs/build-time.md), for a copy of at most a few hundred
+  /// numbers.
   template <int R, int C>
   Mat<R, C> block(int row, int col) const {
-    if (row == col && R == C) {
-      Mat<R, C> out;
+    Mat<R, C> out;
+    if (row >= col + C) {  // entirely below the diagonal: stored as is
+      for (int j = 0; j < C; ++j)
+        for (int i = 0; i < R; ++i) out(i, j) = m_(row + i, col + j);
+    } else if (col >= row + R) {  // entirely above: its transpose is stored
+      for (int j = 0; j < C; ++j)
+        for (int i = 0; i < R; ++i) out(i, j) = m_(col + j, row + i);
+    } else {  // on the diagonal
       for (int j = 0; j < C; ++j)
         for (int i = 0; i < R; ++i) out(i, j) = (*this)(row + i, col + j);
-      return out;
     }
-    if (row >= col + C) return m_.template block<R, C>(row, col);
-    return m_.template block<C, R>(col, row).transpose();
+    return out;
   }
 
   /// New storage of `capacity` holding the lower triangle in use: allocates, and changes

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "sylva/core/covariance_check.hpp"
 #include "sylva/core/error.hpp"
 #include "sylva/core/types.hpp"
 
@@ -54,15 +55,8 @@ class Gaussian {
 
   /// A full covariance matrix; must be symmetric (to 1e-9 relative) and positive definite.
   static Gaussian covariance(const Covariance& cov) {
-    if (!cov.allFinite()) fail(ErrorCode::kNonFinite, "Gaussian::covariance: non-finite entry");
-    const double scale = cov.cwiseAbs().maxCoeff();
-    if (!((cov - cov.transpose()).cwiseAbs().maxCoeff() <= 1e-9 * scale))
-      fail(ErrorCode::kInvalidArgument, "Gaussian::covariance: matrix is not symmetric");
-    const Covariance symmetric = 0.5 * (cov + cov.transpose());
-    Eigen::LLT<Covariance> llt(symmetric);
-    if (llt.info() != Eigen::Success)
-      fail(ErrorCode::kNotPositiveDefinite, "Gaussian::covariance: matrix is not positive definite");
-    return Gaussian(symmetric);
+    detail::checkCovarianceMatrix(cov, detail::Definiteness::kPositive, "Gaussian::covariance: matrix");
+    return Gaussian(Covariance(0.5 * (cov + cov.transpose())));
   }
 
   const Covariance& covariance() const { return covariance_; }
