@@ -6,6 +6,7 @@
 #include <limits>
 #include <vector>
 
+#include "sylva/core/angles.hpp"
 #include "sylva/sim/dynamic_scene_2d.hpp"
 #include "sylva/sim/laser_scanner_2d.hpp"
 #include "sylva/sim/laser_scene_2d.hpp"
@@ -29,8 +30,8 @@ using sylva::sim::WalkingPerson2D;
 using sylva::sim::WalkingPerson2DOptions;
 using sylva_test::throwsCode;
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
-constexpr double kDeg = kPi / 180.0;
+// The range of a beam that hits nothing.
+constexpr double kNoReturn = std::numeric_limits<double>::infinity();
 
 LaserScanner2D noiselessScanner(double max_range = 8.0) {
   LaserScanner2DOptions o;
@@ -61,23 +62,23 @@ TEST_CASE("Laser ray casting: circle and segment distances are exact", "[sim][la
   // Off-axis: the chord at height 0.3 of a unit circle centred at (4, 0.3).
   CHECK(sylva::sim::rayCircleDistance(o, x, Vec<2>(4.0, 0.3), 1.0) ==
         Approx(4.0 - std::sqrt(1.0 - 0.09)));
-  CHECK(sylva::sim::rayCircleDistance(o, x, Vec<2>(4.0, 1.2), 1.0) == kInf);   // misses
-  CHECK(sylva::sim::rayCircleDistance(o, x, Vec<2>(-4.0, 0.0), 1.0) == kInf);  // behind
+  CHECK(sylva::sim::rayCircleDistance(o, x, Vec<2>(4.0, 1.2), 1.0) == kNoReturn);   // misses
+  CHECK(sylva::sim::rayCircleDistance(o, x, Vec<2>(-4.0, 0.0), 1.0) == kNoReturn);  // behind
   CHECK(sylva::sim::rayCircleDistance(o, x, Vec<2>(0.1, 0.0), 1.0) == 0.0);    // inside
   const Vec<2> d = Vec<2>(1.0, 1.0).normalized();
   CHECK(sylva::sim::raySegmentDistance(o, d, Vec<2>(3.0, -5.0), Vec<2>(3.0, 5.0)) ==
         Approx(3.0 * std::sqrt(2.0)));
-  CHECK(sylva::sim::raySegmentDistance(o, d, Vec<2>(3.0, -5.0), Vec<2>(3.0, 2.0)) == kInf);
-  CHECK(sylva::sim::raySegmentDistance(o, x, Vec<2>(1.0, 0.0), Vec<2>(2.0, 0.0)) == kInf);  // parallel
-  CHECK(sylva::sim::raySegmentDistance(o, x, Vec<2>(-3.0, -1.0), Vec<2>(-3.0, 1.0)) == kInf);
+  CHECK(sylva::sim::raySegmentDistance(o, d, Vec<2>(3.0, -5.0), Vec<2>(3.0, 2.0)) == kNoReturn);
+  CHECK(sylva::sim::raySegmentDistance(o, x, Vec<2>(1.0, 0.0), Vec<2>(2.0, 0.0)) == kNoReturn);  // parallel
+  CHECK(sylva::sim::raySegmentDistance(o, x, Vec<2>(-3.0, -1.0), Vec<2>(-3.0, 1.0)) == kNoReturn);
 }
 
 TEST_CASE("LaserScanner2D: 361 beams over 180 deg and exact ranges to a wall", "[sim][laser]") {
   const LaserScanner2D scanner = noiselessScanner(20.0);
   REQUIRE(scanner.beamCount() == 361);
-  CHECK(scanner.beamAngle(0) == Approx(-90.0 * kDeg));
+  CHECK(scanner.beamAngle(0) == Approx(-90.0 * sylva::kRadPerDeg));
   CHECK(scanner.beamAngle(180) == Approx(0.0).margin(1e-12));
-  CHECK(scanner.beamAngle(360) == Approx(90.0 * kDeg));
+  CHECK(scanner.beamAngle(360) == Approx(90.0 * sylva::kRadPerDeg));
   // The geometry handed to scan readers names the same beams and range interval.
   const sylva::LaserScanGeometry g = scanner.geometry();
   REQUIRE(g.beams == 361);
@@ -94,13 +95,13 @@ TEST_CASE("LaserScanner2D: 361 beams over 180 deg and exact ranges to a wall", "
   for (int i = 0; i < 361; ++i) {
     const auto k = static_cast<std::size_t>(i);
     const double alpha = scanner.beamAngle(i);
-    const double expected = std::cos(alpha) > 1e-9 ? 5.0 / std::cos(alpha) : kInf;
+    const double expected = std::cos(alpha) > 1e-9 ? 5.0 / std::cos(alpha) : kNoReturn;
     if (expected <= 20.0) {
       ++hits;
       CHECK(scan.ranges_m[k] == Approx(expected).epsilon(1e-12));
       CHECK(scan.hit_object[k] == 7);
     } else {
-      CHECK(scan.ranges_m[k] == kInf);
+      CHECK(scan.ranges_m[k] == kNoReturn);
       CHECK(scan.hit_object[k] == kNoObject);
     }
   }
@@ -123,11 +124,11 @@ TEST_CASE("LaserScanner2D: nearest shape wins, occlusion, min and max range", "[
   CHECK(scan.ranges_m[180] == Approx(1.9));  // straight ahead: the pole's front
   CHECK(scan.hit_object[180] == 2);
   CHECK(scan.hit_object[180 + 8] == 1);                                   // 4 deg left: the wall
-  CHECK(scan.ranges_m[180 + 8] == Approx(4.0 / std::cos(4.0 * kDeg)));
+  CHECK(scan.ranges_m[180 + 8] == Approx(4.0 / std::cos(4.0 * sylva::kRadPerDeg)));
   CHECK(std::isnan(scan.ranges_m[360]));  // 90 deg left: the close circle, under min range
   CHECK(scan.hit_object[360] == 3);
-  CHECK(scan.ranges_m[0] == kInf);  // to the right: nothing
-  CHECK(scan.true_range_m[0] == kInf);
+  CHECK(scan.ranges_m[0] == kNoReturn);  // to the right: nothing
+  CHECK(scan.true_range_m[0] == kNoReturn);
 }
 
 TEST_CASE("LaserScanner2D: range noise has the configured sigma and is reproducible", "[sim][laser]") {
@@ -145,9 +146,9 @@ TEST_CASE("LaserScanner2D: range noise has the configured sigma and is reproduci
 
   LaserScene2D ring;
   for (int k = 0; k < 72; ++k) {
-    const double a = k * 5.0 * kDeg;
+    const double a = k * 5.0 * sylva::kRadPerDeg;
     ring.addSegment(Vec<2>(3.0 * std::cos(a), 3.0 * std::sin(a)),
-                    Vec<2>(3.0 * std::cos(a + 5.0 * kDeg), 3.0 * std::sin(a + 5.0 * kDeg)), k);
+                    Vec<2>(3.0 * std::cos(a + 5.0 * sylva::kRadPerDeg), 3.0 * std::sin(a + 5.0 * sylva::kRadPerDeg)), k);
   }
   double sum = 0.0, sum2 = 0.0;
   int n = 0;
@@ -184,7 +185,7 @@ TEST_CASE("LaserScanner2D and LaserScene2D refuse nonsense", "[sim][laser]") {
   CHECK(throwsCode(with([](auto& o) { o.sigma_range_m = -1.0; }), ErrorCode::kInvalidArgument));
   LaserScene2D scene;
   CHECK(throwsCode([&] { scene.addCircle(Vec<2>(1.0, 1.0), 0.0, 1); }, ErrorCode::kInvalidArgument));
-  CHECK(throwsCode([&] { scene.addCircle(Vec<2>(kInf, 1.0), 1.0, 1); }, ErrorCode::kNonFinite));
+  CHECK(throwsCode([&] { scene.addCircle(Vec<2>(kNoReturn, 1.0), 1.0, 1); }, ErrorCode::kNonFinite));
   CHECK(throwsCode([&] { scene.addSegment(Vec<2>(1.0, 1.0), Vec<2>(1.0, 1.0), 1); },
                    ErrorCode::kInvalidArgument));
   CHECK(throwsCode([&] { scene.addPolyline({Vec<2>(0.0, 0.0)}, false, 1); },
@@ -195,7 +196,7 @@ TEST_CASE("LaserScanner2D and LaserScene2D refuse nonsense", "[sim][laser]") {
   CHECK(throwsCode([&] { scanner.scan(Vec<3>(0.0, std::nan(""), 0.0), scene, rng); }, ErrorCode::kNonFinite));
   // An empty scene is legal: every beam reads no return.
   const LaserScan2D empty = scanner.scan(Vec<3>::Zero(), scene, rng);
-  for (const double r : empty.ranges_m) CHECK(r == kInf);
+  for (const double r : empty.ranges_m) CHECK(r == kNoReturn);
 }
 
 TEST_CASE("WalkingPerson2D: legs alternate, stance legs stand still, feet keep up with the body",
@@ -291,5 +292,5 @@ TEST_CASE("DynamicScene2D: snapshots move rigid objects and legs, truth ids", "[
   CHECK(throwsCode([&] { world.addRigidObject(RigidObject2D::disc(1, 0.2, Vec<3>::Zero(), Vec<3>::Zero())); },
                    ErrorCode::kDuplicateId));
   CHECK(throwsCode([&] { world.addRigidObject(RigidObject2D{}); }, ErrorCode::kInvalidArgument));
-  CHECK(throwsCode([&] { world.snapshot(kInf, snapshot); }, ErrorCode::kNonFinite));
+  CHECK(throwsCode([&] { world.snapshot(kNoReturn, snapshot); }, ErrorCode::kNonFinite));
 }
