@@ -82,7 +82,7 @@ TEST_CASE("Unicycle2DWithBias: a filter recovers a simulated robot's gains, cons
   // the three gain states at the end lies inside the two-sided 99% bounds of a 20-run mean
   // (chi-square with 60 dof / 20), every gain is within 4 of its sigmas, and the data have
   // taught the filter the gains: each final sigma is below a third of the prior's.
-  using BiasFilter = Ekf<Unicycle2DWithBias, Point2>;
+  using UnicycleBiasFilter = Ekf<Unicycle2DWithBias, Point2>;
   const RangeBearing model;
   const InverseRangeBearing inverse;
   const Vec<2> reading_sigma(0.05, 0.01);
@@ -105,7 +105,7 @@ TEST_CASE("Unicycle2DWithBias: a filter recovers a simulated robot's gains, cons
     x0.tail<3>().setZero();
     Mat<6, 6> P0 = Mat<6, 6>::Zero();
     P0.diagonal() << 1e-6, 1e-6, 1e-6, prior_sigma.cwiseAbs2();
-    BiasFilter ekf(x0, P0);
+    UnicycleBiasFilter ekf(x0, P0);
     const double dt = 0.1;
     const Vec<5> noise_sigma(command_sigma[0], command_sigma[1], 1e-6, 1e-6, 1e-7);
     const Gaussian<5> noise = Gaussian<5>::sigmas(noise_sigma);
