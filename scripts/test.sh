@@ -13,11 +13,11 @@
 #                                        runs their smoke runs and the repository checks, but
 #                                        not the unit tests: CI's split (.ci/run), which
 #                                        builds and runs the unit tests under the sanitizers
-#   bash scripts/test.sh --overlap       runs the Release phase beside the sanitizer and
-#                                        consumer phases instead of before them (each line
-#                                        of output carries its phase's name); the build
-#                                        directories stay apart, so it only fills the cores
-#                                        that one phase leaves idle in its slowest steps
+#   bash scripts/test.sh --overlap       runs the Release phase (then the consumer) beside
+#                                        the sanitizer phase, each build with half the jobs,
+#                                        instead of one after the other (each line of output
+#                                        carries its phase's name); the build directories
+#                                        stay apart
 #
 # Missing Debian packages are installed with apt-get (as root, or through sudo).
 # Environment: SYLVA_BUILD_ROOT (default <repo>/build) holds the build directories,
@@ -53,6 +53,9 @@ done
 repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build_root="${SYLVA_BUILD_ROOT:-$repo/build}"
 jobs="${SYLVA_JOBS:-$(nproc)}"
+# The -j of the Release and sanitizer builds: with --overlap the two run side by side, so each
+# takes half (see the overlap branch at the end).
+build_jobs="$jobs"
 
 # ---- dependencies ------------------------------------------------------------------------
 # parallel: the study's GNU parallel test; locales: the locale sources from which a test
@@ -100,7 +103,7 @@ main_phase() {
   cmake -S "$repo" -B "$build_root/test" -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS_RELEASE="-O1 -DNDEBUG" \
     ${SYLVA_CXX:+-DCMAKE_CXX_COMPILER="$SYLVA_CXX"} \
     -DSYLVA_BUILD_TESTS=ON -DSYLVA_UNIT_TESTS="$unit_tests" -DSYLVA_BUILD_EXAMPLES=ON -DSYLVA_BUILD_BENCHMARKS=ON
-  cmake --build "$build_root/test" -j "$jobs"
+  cmake --build "$build_root/test" -j "$build_jobs"
   finish "Release build"
   begin "ctest (Release)"
   run_ctest "$build_root/test"
@@ -123,7 +126,7 @@ sanitize_phase() {
     -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O0 -g1" -DSYLVA_SLOW_TEST_OPTIONS="-O1" \
     -DSYLVA_BUILD_TESTS=ON -DSYLVA_UNIT_TESTS=ON -DSYLVA_BUILD_EXAMPLES=OFF -DSYLVA_BUILD_BENCHMARKS=OFF \
     -DSYLVA_SANITIZERS="address;undefined"
-  cmake --build "$build_root/sanitize" -j "$jobs"
+  cmake --build "$build_root/sanitize" -j "$build_jobs"
   finish "ASan+UBSan build"
   begin "ctest (ASan+UBSan)"
   run_ctest "$build_root/sanitize" \
@@ -156,22 +159,26 @@ consumer_phase() {
 label() { sed -u "s/^/[$1] /"; }
 
 if ((overlap && run_main && (run_sanitize || run_consumer))); then
-  # The Release phase beside the sanitizer phase (then the consumer); both must pass. Make
-  # and ctest keep their -j, so up to twice as many jobs run as there are cores. Both are
-  # background jobs, so that `set -e` holds inside each (in a subshell on the left of `||`
-  # bash would ignore it).
-  (main_phase) 2>&1 | label release &
+  # Two chains side by side: the Release phase then the consumer, and the sanitizer phase;
+  # both must pass. The two large builds take half the jobs each, so that no more compilers
+  # run than there are cores (each large unit's compile takes more CPU time when more
+  # processes share the caches, and the builds' CPU time is most of the run); ctest and the
+  # consumer keep the full -j. The consumer follows the Release phase because the sanitizer
+  # phase is the longer of the two. Both chains are background jobs, so that `set -e` holds
+  # inside each (in a subshell on the left of `||` bash would ignore it).
+  build_jobs=$((jobs > 1 ? jobs / 2 : 1))
+  ( main_phase 2>&1 | label release
+    if ((run_consumer)); then consumer_phase 2>&1 | label consumer; fi ) &
   main_pid=$!
-  ( if ((run_sanitize)); then sanitize_phase; fi
-    if ((run_consumer)); then consumer_phase; fi ) 2>&1 | label sanitize &
+  ( if ((run_sanitize)); then sanitize_phase; fi ) 2>&1 | label sanitize &
   rest_pid=$!
   main_status=0
   rest_status=0
   if ! wait "$rest_pid"; then rest_status=1; fi
   if ! wait "$main_pid"; then main_status=1; fi
   if ((main_status || rest_status)); then
-    echo "test.sh: a phase failed (Release: $( ((main_status)) && echo failed || echo passed)," \
-      "sanitizer and consumer: $( ((rest_status)) && echo failed || echo passed))" >&2
+    echo "test.sh: a phase failed (Release and consumer: $( ((main_status)) && echo failed || echo passed)," \
+      "sanitizer: $( ((rest_status)) && echo failed || echo passed))" >&2
     exit 1
   fi
 else
