@@ -23,7 +23,8 @@
 # Environment: SYLVA_BUILD_ROOT (default <repo>/build) holds the build directories,
 # SYLVA_JOBS (default: number of cores) is the parallelism of builds and ctest,
 # SYLVA_CXX (default: the system's c++, g++ on Debian) compiles the Release phase and
-# SYLVA_SANITIZE_CXX (default clang++) the sanitizer phase; the consumer is always built
+# SYLVA_SANITIZE_CXX (default clang++) the sanitizer phase, SYLVA_SANITIZE_DEBUG (default
+# none; -g1 for file and line in its reports) its debug information; the consumer is always built
 # with the system's c++, the compiler most users have.
 #
 # Examples and benchmarks are compiled in the Release phase so that CI notices when they
@@ -31,7 +32,7 @@
 # sylva_add_example_smoke_test() (see the top-level CMakeLists.txt), label "smoke".
 set -euo pipefail
 
-usage() { sed -n '2,31p' "$0" | sed 's/^# \{0,1\}//'; }
+usage() { sed -n '2,32p' "$0" | sed 's/^# \{0,1\}//'; }
 
 run_main=1
 run_sanitize=0
@@ -111,19 +112,22 @@ main_phase() {
 }
 
 # ---- AddressSanitizer + UndefinedBehaviorSanitizer ---------------------------------------
-# -O0 -g1 with assertions on (no NDEBUG, so Eigen checks indices and sizes too): clang++
-# compiles the tests about 40% faster than at -O1 (tests/filter: 347 s against 583 s). Eigen
-# runs 50-100x slower there, so the test files with a case tagged [slow] (ensembles, long
-# runs) compile at -O1 instead (SYLVA_SLOW_TEST_OPTIONS, tests/CMakeLists.txt); -O2 -g took
-# 3.5x longer and 5 GB of memory to compile the largest test file. Built with clang++
+# -O0 with assertions on (no NDEBUG, so Eigen checks indices and sizes too): clang++ compiles
+# the tests about 40% faster than at -O1 (tests/filter: 347 s against 583 s). Eigen runs
+# 50-100x slower there, so the test files with a case tagged [slow] (ensembles, long runs)
+# compile at -O1 instead (SYLVA_SLOW_TEST_OPTIONS, tests/CMakeLists.txt); -O2 -g took 3.5x
+# longer and 5 GB of memory to compile the largest test file. Built with clang++
 # (SYLVA_SANITIZE_CXX overrides it): the tests are template-heavy and g++ 12 spends about 3x
 # longer on them (no_allocation.test.cpp: 110 s with g++ -O2, 34 s with clang++ -O2), and a
 # second compiler catches what one misses.
+# Without debug information: line tables (-g1) made clang++ take 15-20% longer on each test
+# unit (test_tools 104 against 88 CPU-s, test_slow 171 against 135), and a sanitizer report
+# still names every function of its stack. SYLVA_SANITIZE_DEBUG=-g1 adds file and line.
 sanitize_phase() {
   begin "ASan+UBSan build (tests, ${SYLVA_SANITIZE_CXX:-clang++}) in $build_root/sanitize"
-  cmake -S "$repo" -B "$build_root/sanitize" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  cmake -S "$repo" -B "$build_root/sanitize" -DCMAKE_BUILD_TYPE=Debug \
     -DCMAKE_CXX_COMPILER="${SYLVA_SANITIZE_CXX:-clang++}" \
-    -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O0 -g1" -DSYLVA_SLOW_TEST_OPTIONS="-O1" \
+    -DCMAKE_CXX_FLAGS_DEBUG="-O0 ${SYLVA_SANITIZE_DEBUG:-}" -DSYLVA_SLOW_TEST_OPTIONS="-O1" \
     -DSYLVA_BUILD_TESTS=ON -DSYLVA_UNIT_TESTS=ON -DSYLVA_BUILD_EXAMPLES=OFF -DSYLVA_BUILD_BENCHMARKS=OFF \
     -DSYLVA_SANITIZERS="address;undefined"
   cmake --build "$build_root/sanitize" -j "$build_jobs"
