@@ -12,7 +12,6 @@
 #include "eigen_allocation_hook.hpp"
 #include "replaced_operator_new.hpp"
 
-#include <functional>
 #include <string>
 #include <vector>
 
@@ -20,52 +19,15 @@
 
 #include "copy_init.hpp"
 #include "filter/monocular_rig.hpp"
-#include "filter_snapshot.hpp"
+#include "filter/every_allocation_fails.hpp"
 #include "sylva_catch.hpp"
 
-using sylva_test::g_allocations;
-using sylva_test::g_fail_at;
+using sylva_test::everyAllocationFails;
 using sylva_test::g_other_eigen_asserts;
 
 using namespace sylva;
 
 namespace {
-
-/// Runs `operation` on copies of `filter`, failing its 1st, 2nd, ... allocation until it
-/// completes. After each failure the copy must equal `filter` (mean, covariance, slots, and
-/// `unchanged(copy)` for what a snapshot does not see), and the operation repeated on it
-/// without a fault must give exactly what it gives on a fresh copy. Returns the number of
-/// allocations the operation made.
-template <typename Filter>
-long everyAllocationFails(const Filter& filter, const std::function<void(Filter&)>& operation,
-                          const std::function<bool(const Filter&)>& unchanged = nullptr) {
-  Filter reference = filter;
-  operation(reference);
-  const sylva_test::Snapshot expected(reference);
-  const sylva_test::Snapshot before(filter);
-  for (long k = 1; k < 10000; ++k) {
-    Filter copy = filter;
-    bool failed = false;
-    g_allocations = 0;
-    g_fail_at = k;
-    Eigen::internal::set_is_malloc_allowed(false);
-    try {
-      operation(copy);
-    } catch (const std::bad_alloc&) {
-      failed = true;
-    }
-    Eigen::internal::set_is_malloc_allowed(true);
-    g_fail_at = 0;
-    if (!failed) return k - 1;
-    INFO("allocation " << k << " failed");
-    CHECK(sylva_test::Snapshot(copy) == before);
-    if (unchanged) CHECK(unchanged(copy));
-    operation(copy);
-    CHECK(sylva_test::Snapshot(copy) == expected);
-  }
-  FAIL("the operation never completed");
-  return -1;
-}
 
 using Planar = Ekf<Unicycle2D, Point2>;
 using PlanarJoseph = JosephEkf<Unicycle2D, Point2>;
@@ -150,48 +112,5 @@ TEST_CASE("fault injection: the monocular filter's updates and reparametrization
       f.update(rig.xyz_model, 4, rig.xyz_model(ConstantVelocity3D::pose(f.robotMean()), f.landmarkMean<Point3>(4)) + Vec<2>(-0.3, 0.2), rig.pixel);
     });
   }
-  CHECK(g_other_eigen_asserts.load() == 0);
-}
-
-TEST_CASE("fault injection: a large state, where Eigen's products may put their buffers on the heap",
-          "[filter][faults][slow]") {
-  // 1000 landmarks: n = 2003. The n x n products of the Joseph form's batched update pack
-  // their operands into buffers larger than Eigen's stack limit (EIGEN_STACK_ALLOCATION_LIMIT,
-  // 128 kB), which Eigen takes from the heap; before those products went into a workspace of
-  // their own, allocations 14-16 of the batch failed after the mean was written. (At
-  // n = 503 the buffers still fit on the stack.)
-  const auto large = [](auto tag) {
-    using Filter = decltype(tag);
-    Filter ekf(Vec<3>(0.5, -0.2, 0.3), Mat<3, 3>(Vec<3>(0.01, 0.02, 0.003).asDiagonal()));
-    for (int i = 1; i <= 1000; ++i)
-      ekf.add(i, InverseRangeBearing{}, Vec<2>(3.0 + 0.05 * i, -3.0 + 0.006 * i), kReading);
-    return ekf;
-  };
-  const RangeBearing model;
-  const auto batchOf = [&](const auto& f) {
-    std::vector<Observation<RangeBearing>> batch;
-    for (Id id : {3, 40, 77, 120, 161, 200, 249})
-      batch.push_back({id, Vec<2>(model(f.robotMean(), f.template landmarkMean<Point2>(id)) + Vec<2>(0.03, -0.01)), kReading});
-    return batch;
-  };
-  const auto check = [&](const auto& filter) {
-    using Filter = std::decay_t<decltype(filter)>;
-    INFO(Filter::UpdateForm::kName);
-    everyAllocationFails<Filter>(filter, [](Filter& f) {
-      f.predict(Vec<2>(1.0, 0.1), 0.1, Gaussian<2>::sigmas(Vec<2>(0.1, 0.05)));
-    });
-    everyAllocationFails<Filter>(filter, [&](Filter& f) {
-      f.update(model, 120, Vec<2>(model(f.robotMean(), f.template landmarkMean<Point2>(120)) + Vec<2>(0.05, -0.01)),
-               kReading);
-    });
-    INFO("batch");
-    everyAllocationFails<Filter>(filter, [&](Filter& f) { f.update(model, batchOf(f)); });
-    everyAllocationFails<Filter>(filter, [](Filter& f) { f.add(100001, InverseRangeBearing{}, Vec<2>(5.0, 0.2), kReading); },
-                                 [](const Filter& f) { return !f.contains(100001); });
-    everyAllocationFails<Filter>(filter, [](Filter& f) { f.remove(100); },
-                                 [](const Filter& f) { return f.contains(100); });
-  };
-  check(large(Planar(Vec<3>::Zero(), Mat<3, 3>::Identity())));
-  check(large(PlanarJoseph(Vec<3>::Zero(), Mat<3, 3>::Identity())));
   CHECK(g_other_eigen_asserts.load() == 0);
 }

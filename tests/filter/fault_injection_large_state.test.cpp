@@ -1,0 +1,74 @@
+// The strong guarantee under failed allocations in a large state, where Eigen's products take
+// their buffers from the heap (the method is that of fault_injection.test.cpp). A file of its
+// own: the case is tagged [slow] and runs at -O1 in the sanitizer build, where the other
+// allocation tests compile at -O0 (tests/CMakeLists.txt).
+
+#include "eigen_allocation_hook.hpp"
+#include "replaced_operator_new.hpp"
+
+#include <vector>
+
+#include <sylva/filter.hpp>
+#include <sylva/landmarks/point2.hpp>
+#include <sylva/measurements/range_bearing.hpp>
+#include <sylva/motion/unicycle_2d.hpp>
+#include <sylva/noise/gaussian.hpp>
+
+#include "filter/every_allocation_fails.hpp"
+#include "sylva_catch.hpp"
+
+using sylva_test::everyAllocationFails;
+using sylva_test::g_other_eigen_asserts;
+
+using namespace sylva;
+
+namespace {
+
+using Planar = Ekf<Unicycle2D, Point2>;
+using PlanarJoseph = JosephEkf<Unicycle2D, Point2>;
+const auto kReading = Gaussian<2>::sigmas(Vec<2>(0.1, 0.02));
+
+}  // namespace
+
+TEST_CASE("fault injection: a large state, where Eigen's products may put their buffers on the heap",
+          "[filter][faults][slow]") {
+  // 1000 landmarks: n = 2003. The n x n products of the Joseph form's batched update pack
+  // their operands into buffers larger than Eigen's stack limit (EIGEN_STACK_ALLOCATION_LIMIT,
+  // 128 kB), which Eigen takes from the heap; before those products went into a workspace of
+  // their own, allocations 14-16 of the batch failed after the mean was written. (At
+  // n = 503 the buffers still fit on the stack.)
+  const auto large = [](auto tag) {
+    using Filter = decltype(tag);
+    Filter ekf(Vec<3>(0.5, -0.2, 0.3), Mat<3, 3>(Vec<3>(0.01, 0.02, 0.003).asDiagonal()));
+    for (int i = 1; i <= 1000; ++i)
+      ekf.add(i, InverseRangeBearing{}, Vec<2>(3.0 + 0.05 * i, -3.0 + 0.006 * i), kReading);
+    return ekf;
+  };
+  const RangeBearing model;
+  const auto batchOf = [&](const auto& f) {
+    std::vector<Observation<RangeBearing>> batch;
+    for (Id id : {3, 40, 77, 120, 161, 200, 249})
+      batch.push_back({id, Vec<2>(model(f.robotMean(), f.template landmarkMean<Point2>(id)) + Vec<2>(0.03, -0.01)), kReading});
+    return batch;
+  };
+  const auto check = [&](const auto& filter) {
+    using Filter = std::decay_t<decltype(filter)>;
+    INFO(Filter::UpdateForm::kName);
+    everyAllocationFails<Filter>(filter, [](Filter& f) {
+      f.predict(Vec<2>(1.0, 0.1), 0.1, Gaussian<2>::sigmas(Vec<2>(0.1, 0.05)));
+    });
+    everyAllocationFails<Filter>(filter, [&](Filter& f) {
+      f.update(model, 120, Vec<2>(model(f.robotMean(), f.template landmarkMean<Point2>(120)) + Vec<2>(0.05, -0.01)),
+               kReading);
+    });
+    INFO("batch");
+    everyAllocationFails<Filter>(filter, [&](Filter& f) { f.update(model, batchOf(f)); });
+    everyAllocationFails<Filter>(filter, [](Filter& f) { f.add(100001, InverseRangeBearing{}, Vec<2>(5.0, 0.2), kReading); },
+                                 [](const Filter& f) { return !f.contains(100001); });
+    everyAllocationFails<Filter>(filter, [](Filter& f) { f.remove(100); },
+                                 [](const Filter& f) { return f.contains(100); });
+  };
+  check(large(Planar(Vec<3>::Zero(), Mat<3, 3>::Identity())));
+  check(large(PlanarJoseph(Vec<3>::Zero(), Mat<3, 3>::Identity())));
+  CHECK(g_other_eigen_asserts.load() == 0);
+}
