@@ -6,6 +6,7 @@
 #include "replaced_operator_new.hpp"
 
 #include <sylva/core/thread_pool.hpp>
+#include <sylva/detail/compressed_region.hpp>
 #include <sylva/monocular.hpp>
 
 #include "sylva_catch.hpp"
@@ -149,4 +150,39 @@ TEST_CASE("building a noise from a full covariance allocates nothing", "[filter]
   Eigen::internal::set_is_malloc_allowed(true);
   CHECK(g_allocations.load() - before == 0);
   CHECK(sum == Approx(10 * (0.3 - 0.5)));
+}
+
+TEST_CASE("the compressed EKF's local steps and global update do not allocate in steady state",
+          "[filter][allocation][compressed]") {
+  // detail::CompressedRegion (the kernel of the compressed policy): its workspaces grow to the
+  // largest step and state seen, then every local step and global update runs in them.
+  const int n = 3 + 2 * 40;
+  Eigen::MatrixXd P = Eigen::MatrixXd::Identity(n, n);
+  for (int i = 1; i < n; ++i) P(i, i - 1) = 0.1;  // lower triangle, as the filter stores it
+  Eigen::VectorXd x = Eigen::VectorXd::LinSpaced(n, -1.0, 1.0);
+  detail::CompressedRegion region;
+  region.begin({0, 1, 2, 9, 10, 30, 31});
+  const Eigen::Matrix3d J = Eigen::Matrix3d::Identity() + 0.01 * Eigen::Matrix3d::Ones();
+  Eigen::MatrixXd H = Eigen::MatrixXd::Zero(4, 7), K = Eigen::MatrixXd::Zero(7, 4);
+  H(0, 0) = H(1, 3) = H(2, 5) = H(3, 6) = 1.0;
+  K = 0.1 * H.transpose();
+  const Eigen::LLT<Eigen::MatrixXd> S(Eigen::MatrixXd::Identity(4, 4) * 2.0);
+  const Eigen::VectorXd nu = Eigen::VectorXd::Constant(4, 0.05);
+  const Eigen::LLT<Eigen::MatrixXd> S2(Eigen::MatrixXd::Identity(2, 2) * 2.0);
+  const auto stepsWithTwoRows = [&] {
+    for (int k = 0; k < 5; ++k) {
+      region.predict(0, J);
+      region.update(H, K, S, nu);
+      region.update(H.topRows(2), K.leftCols(2), S2, nu.head(2));
+    }
+    region.globalUpdate(P, x);
+  };
+  stepsWithTwoRows();  // warm-up: sizes the workspaces
+  const long before = g_allocations.load();
+  Eigen::internal::set_is_malloc_allowed(false);
+  stepsWithTwoRows();
+  Eigen::internal::set_is_malloc_allowed(true);
+  CHECK(g_allocations.load() - before == 0);
+  CHECK(x.allFinite());
+  CHECK(g_other_eigen_asserts.load() == 0);
 }

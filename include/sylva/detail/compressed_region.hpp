@@ -1,9 +1,10 @@
 #pragma once
 /// @file
 /// `detail::CompressedRegion`: the bookkeeping of the compressed EKF (Guivant and Nebot,
-/// "Optimization of the simultaneous localization and map-building algorithm for real-time
-/// implementation", IEEE T-RA 17(3), 2001, sec. III), the kernel under the filter's
-/// compressed policy (issue 19, part 2; not yet used by `BasicEkf`).
+/// "Optimization of the simultaneous localization and map-building algorithm for real time
+/// implementation", IEEE T-RA 17(3):242-257, 2001; cited by the multisensor thesis as [72]),
+/// the kernel under the filter's compressed policy (issue 19, part 2; not yet used by
+/// `BasicEkf`).
 ///
 /// The state splits into an active part A (the robot and the landmarks near it) and a passive
 /// part B. While every prediction moves only A and every update observes only A, the exact
@@ -23,9 +24,10 @@
 ///   psi   <- psi + (H_A phi)^T S^-1 (H_A phi)
 ///   phi   <- phi - K_A (H_A phi)
 ///
-/// (Guivant and Nebot's eq. 14-17, written with the update's own factors). A local step costs
+/// (derived here from the update equations above, by induction over the local steps; the
+/// paper's accumulators are the same up to how S^-1 is factored). A local step costs
 /// O(m a^2) here on top of the active block's own O(m a^2) update, whatever the size of B;
-/// `globalUpdate` brings B up to date in O(b^2 a), once, when the region changes. The result
+/// `globalUpdate` brings B up to date in O(n^2 a), once, when the region changes. The result
 /// is the plain EKF's, up to round-off.
 ///
 /// The caller keeps x_A and P_AA up to date with the usual update equations, and leaves every
@@ -34,8 +36,12 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
 #include <algorithm>
+#include <cmath>
 #include <utility>
 #include <vector>
+
+#include "sylva/core/parallel.hpp"
+#include "sylva/detail/lower_rank_update.hpp"
 
 namespace sylva::detail {
 
@@ -90,39 +96,52 @@ class CompressedRegion {
     ++steps_;
   }
 
-  /// Brings the passive part up to date: P_AB = phi P_AB0, P_BB -= P_BA0 psi P_AB0 and
-  /// x_B += P_BA0 theta, on the full symmetric `P` (both triangles) and `x` of the state, whose
-  /// A-only entries the caller has kept current. Then starts over in the same region.
-  /// Allocates (P_BA0 and its products, b x a each).
+  /// Brings the passive part up to date, on the filter's storage: `P` holds the covariance in
+  /// its lower triangle (its strictly upper part is neither read nor written) and `x` the
+  /// mean, both with their A-only entries kept current by the caller. With V = P_BA0 (n x a,
+  /// the rows of A zero):
+  ///   x   += V theta
+  ///   P_BB -= V psi V^T, as P -= W W^T with W = V Q sqrt(D) from psi = Q D Q^T (LDLT with
+  ///          pivoting; psi is a sum of positive semi-definite terms, so D >= 0 but for
+  ///          round-off, which is clamped), through the filter's tiled lower rank update
+  ///   P_BA = V phi^T.
+  /// Everything is computed in workspaces before anything is written, so a failed allocation
+  /// leaves P and x as they were. Then starts over in the same region.
   template <typename MatrixP, typename VectorX>
-  void globalUpdate(MatrixP& P, VectorX& x) {
-    const auto n = P.rows();
-    std::vector<char> in_a(static_cast<std::size_t>(n), 0);
-    for (int i : active_) in_a[static_cast<std::size_t>(i)] = 1;
-    std::vector<int> passive;
-    for (int i = 0; i < n; ++i)
-      if (!in_a[static_cast<std::size_t>(i)]) passive.push_back(i);
+  void globalUpdate(MatrixP& P, VectorX& x, Parallel* parallel = nullptr) {
+    const Eigen::Index n = P.rows();
     const auto a = static_cast<Eigen::Index>(active_.size());
-    const auto b = static_cast<Eigen::Index>(passive.size());
-    Eigen::MatrixXd P_BA0(b, a);
-    for (Eigen::Index j = 0; j < a; ++j)
-      for (Eigen::Index i = 0; i < b; ++i) P_BA0(i, j) = P(passive[i], active_[j]);
-    const Eigen::MatrixXd P_BA = P_BA0 * phi_.transpose();
-    const Eigen::VectorXd dx_B = P_BA0 * theta_;
-    const Eigen::MatrixXd P_BA0_psi = P_BA0 * psi_;
-    for (Eigen::Index j = 0; j < b; ++j) {
-      x[passive[j]] += dx_B[j];
-      for (Eigen::Index i = j; i < b; ++i) {
-        const double v = P(passive[i], passive[j]) - P_BA0_psi.row(i).dot(P_BA0.row(j));
-        P(passive[i], passive[j]) = v;
-        P(passive[j], passive[i]) = v;
-      }
-      for (Eigen::Index k = 0; k < a; ++k) {
-        P(passive[j], active_[k]) = P_BA(j, k);
-        P(active_[k], passive[j]) = P_BA(j, k);
+    in_active_.assign(static_cast<std::size_t>(n), 0);
+    for (int i : active_) in_active_[static_cast<std::size_t>(i)] = 1;
+    const auto lower = [&P](Eigen::Index i, Eigen::Index j) { return i >= j ? P(i, j) : P(j, i); };
+    auto V = workspace(V_, n, a);
+    for (Eigen::Index k = 0; k < a; ++k)
+      for (Eigen::Index i = 0; i < n; ++i) V(i, k) = in_active_[static_cast<std::size_t>(i)] ? 0.0 : lower(i, active_[k]);
+    psi_ldlt_.compute(psi_);
+    auto QsqrtD = workspace(QsqrtD_, a, a);
+    QsqrtD = psi_ldlt_.matrixL();
+    QsqrtD = psi_ldlt_.transpositionsP().transpose() * QsqrtD;
+    for (Eigen::Index k = 0; k < a; ++k) QsqrtD.col(k) *= std::sqrt(std::max(0.0, psi_ldlt_.vectorD()[k]));
+    auto W = workspace(W_, n, a);
+    W.noalias() = V * QsqrtD;
+    auto U = workspace(U_, n, a);
+    U.noalias() = V * phi_.transpose();
+    auto dx = workspace(dx_, n, 1).col(0);
+    dx.noalias() = V * theta_;
+    // Nothing below allocates.
+    x += dx;
+    subtractLowerRankUpdate(P.topLeftCorner(n, n), W, parallel);
+    for (Eigen::Index k = 0; k < a; ++k) {
+      const Eigen::Index j = active_[k];
+      for (Eigen::Index i = 0; i < n; ++i) {
+        if (in_active_[static_cast<std::size_t>(i)]) continue;
+        (i >= j ? P(i, j) : P(j, i)) = U(i, k);
       }
     }
-    begin(active_);
+    phi_.setIdentity();
+    psi_.setZero();
+    theta_.setZero();
+    steps_ = 0;
   }
 
   /// The accumulators (for tests): phi (a x a), psi (a x a, symmetric), theta (a).
@@ -135,8 +154,11 @@ class CompressedRegion {
   Eigen::MatrixXd phi_, psi_;
   Eigen::VectorXd theta_;
   long steps_ = 0;
-  // Workspaces of the local steps: they grow to the largest step seen and then stay.
+  // Workspaces: they grow to the largest step (and state) seen and then stay.
   Eigen::MatrixXd rows_, Hphi_, SinvHphi_, Sinv_nu_;
+  Eigen::MatrixXd V_, W_, U_, dx_, QsqrtD_;
+  Eigen::LDLT<Eigen::MatrixXd> psi_ldlt_;
+  std::vector<char> in_active_;
 
   /// The top rows x cols corner of `storage`, grown if it is smaller.
   static Eigen::Block<Eigen::MatrixXd> workspace(Eigen::MatrixXd& storage, Eigen::Index rows, Eigen::Index cols) {
