@@ -141,11 +141,4 @@ BENCHMARK(BM_PlainRankUpdate)->Apply(mapSizes)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_CompressedLocalStep)->Apply(mapSizes)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_CompressedGlobalUpdate)->Apply(mapSizes)->Unit(benchmark::kMicrosecond);
 
-int main(int argc, char** argv) {
-  benchmark::Initialize(&argc, argv);
-  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
-  sylva_bench::addBuildContext();
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  return 0;
-}
+int main(int argc, char** argv) { return sylva_bench::runBenchmarks(argc, argv); }

@@ -345,12 +345,6 @@ BENCHMARK(BM_StepNaive)->Apply(sizes);
 }  // namespace
 
 int main(int argc, char** argv) {
-  benchmark::Initialize(&argc, argv);
-  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   // Recorded in the JSON context so that the reports can name the machine and build.
-  sylva_bench::addBuildContext();
-  benchmark::AddCustomContext("observations_per_step", std::to_string(kVisible));
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  return 0;
+  return sylva_bench::runBenchmarks(argc, argv, {{"observations_per_step", std::to_string(kVisible)}});
 }

@@ -3,13 +3,16 @@
 /// `sylva_bench::addBuildContext()`: records the CPU model, compiler, flags, build type and
 /// Eigen's version and SIMD set in a benchmark's JSON context, so the reports that read the
 /// JSON (scripts/bench_report.py, scripts/step_report.py) can name the machine and the build.
-/// Call it between benchmark::Initialize and benchmark::RunSpecifiedBenchmarks.
+/// Call it between benchmark::Initialize and benchmark::RunSpecifiedBenchmarks, or let
+/// `runBenchmarks` (a benchmark program's whole main) do it.
 
 #include <benchmark/benchmark.h>
 
 #include <Eigen/Core>
 #include <fstream>
+#include <initializer_list>
 #include <string>
+#include <utility>
 
 // Set by bench/CMakeLists.txt.
 #ifndef SYLVA_BENCH_CXX_FLAGS
@@ -49,6 +52,20 @@ inline void addBuildContext() {
                                                    std::to_string(EIGEN_MAJOR_VERSION) + "." +
                                                    std::to_string(EIGEN_MINOR_VERSION));
   benchmark::AddCustomContext("eigen_simd", Eigen::SimdInstructionSetsInUse());
+}
+
+/// A benchmark program's main: parses Google Benchmark's flags (an unknown one is an error),
+/// records the build context and `extra` (name, value) pairs in the JSON context, runs the
+/// benchmarks. Returns the exit code.
+inline int runBenchmarks(int argc, char** argv,
+                         std::initializer_list<std::pair<std::string, std::string>> extra = {}) {
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  addBuildContext();
+  for (const auto& [name, value] : extra) benchmark::AddCustomContext(name, value);
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
 }
 
 }  // namespace sylva_bench
