@@ -20,18 +20,16 @@
 #include "copy_init.hpp"
 #include "filter/monocular_rig.hpp"
 #include "filter/every_allocation_fails.hpp"
+#include "filter/fault_injection_planar.hpp"
 #include "sylva_catch.hpp"
 
 using sylva_test::everyAllocationFails;
+using namespace sylva_test::fault_injection;
 using sylva_test::g_other_eigen_asserts;
 
 using namespace sylva;
 
 namespace {
-
-using Planar = Ekf<Unicycle2D, Point2>;
-using PlanarJoseph = JosephEkf<Unicycle2D, Point2>;
-const auto kReading = Gaussian<2>::sigmas(Vec<2>(0.1, 0.02));
 
 /// A planar filter with landmarks 1..6 and no update yet (its workspaces are empty, so the
 /// operations below allocate them).

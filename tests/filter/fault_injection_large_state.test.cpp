@@ -8,27 +8,15 @@
 
 #include <vector>
 
-#include <sylva/filter.hpp>
-#include <sylva/landmarks/point2.hpp>
-#include <sylva/measurements/range_bearing.hpp>
-#include <sylva/motion/unicycle_2d.hpp>
-#include <sylva/noise/gaussian.hpp>
-
 #include "filter/every_allocation_fails.hpp"
+#include "filter/fault_injection_planar.hpp"
 #include "sylva_catch.hpp"
 
 using sylva_test::everyAllocationFails;
+using namespace sylva_test::fault_injection;
 using sylva_test::g_other_eigen_asserts;
 
 using namespace sylva;
-
-namespace {
-
-using Planar = Ekf<Unicycle2D, Point2>;
-using PlanarJoseph = JosephEkf<Unicycle2D, Point2>;
-const auto kReading = Gaussian<2>::sigmas(Vec<2>(0.1, 0.02));
-
-}  // namespace
 
 TEST_CASE("fault injection: a large state, where Eigen's products may put their buffers on the heap",
           "[filter][faults][slow]") {
