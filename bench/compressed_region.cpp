@@ -2,16 +2,15 @@
 /// The compressed EKF's kernel (sylva::detail::CompressedRegion) against the plain batched
 /// update's kernel, on the sizes of the circle world's step (bench/slam_step.cpp): N landmarks
 /// of 2 coordinates (n = 3 + 2N), 12 observations of 2 rows a step (m = 24), and an active
-/// region of the robot and 20 landmarks (a = 43). Kernels only: the filter does not use the
-/// region yet (issue 19, part 2), so these bound what a compressed step can gain, they do not
-/// time one.
+/// region of the robot and 20 landmarks (a = 43). Kernels only: they bound what a compressed
+/// step can gain; bench/slam_step.cpp times the filter's compressed steps.
 ///
 /// Families (the argument is N):
 ///   BM_PlainRankUpdate        P -= W W^T on the n x n lower triangle, W n x 24: the part of
 ///                             a plain batched step that grows as n^2
 ///   BM_CompressedLocalStep    what a compressed step does instead: the active block's own
 ///                             update (S, K_A, P_AA -= K_A S K_A^T, a x a) and the region's
-///                             accumulators (CompressedRegion::update); independent of N
+///                             accumulators (CompressedRegion::stageUpdate); independent of N
 ///   BM_CompressedGlobalUpdate CompressedRegion::globalUpdate after a local phase: once per
 ///                             region change, O(n^2 a)
 /// A compressed run whose regions last L steps costs about
@@ -21,9 +20,7 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
-#include <numeric>
 #include <random>
-#include <vector>
 
 #include "common/build_context.hpp"
 #include "sylva/detail/compressed_region.hpp"
@@ -70,18 +67,16 @@ void BM_CompressedLocalStep(benchmark::State& state) {
   const Eigen::MatrixXd H_A = randomMatrix(kRows, kActive, 2);
   const Eigen::MatrixXd R = Eigen::MatrixXd::Identity(kRows, kRows);
   const Eigen::VectorXd nu = 0.01 * randomMatrix(kRows, 1, 3);
-  std::vector<int> active(kActive);
-  std::iota(active.begin(), active.end(), 0);
   sylva::detail::CompressedRegion region;
   Eigen::MatrixXd P_AA = P_AA0;
-  Eigen::MatrixXd PHt(kActive, kRows), S(kRows, kRows), K(kActive, kRows);
+  Eigen::MatrixXd PHt(kActive, kRows), S(kRows, kRows), K(kActive, kRows), W(kActive, kRows);
   Eigen::LLT<Eigen::MatrixXd> S_llt(kRows);
   for (auto _ : state) {
     // Every iteration starts from the same state (outside the timing), so that it times the
     // same arithmetic on the same numbers.
     state.PauseTiming();
     P_AA = P_AA0;
-    region.begin(active);
+    region.begin(kActive);
     state.ResumeTiming();
     PHt.noalias() = P_AA.selfadjointView<Eigen::Lower>() * H_A.transpose();
     S = R;
@@ -90,7 +85,10 @@ void BM_CompressedLocalStep(benchmark::State& state) {
     K = PHt.transpose();
     S_llt.solveInPlace(K);
     K.transposeInPlace();
-    region.update(H_A, K, S_llt, nu);
+    W.noalias() = K * S_llt.matrixL();
+    region.hphiTransposed(kRows).noalias() = region.phiTransposed() * H_A.transpose();
+    region.stageUpdate(S_llt.matrixL(), nu, W);
+    region.commitUpdate();
     P_AA.triangularView<Eigen::Lower>() -= K * PHt.transpose();  // P_AA -= K S K^T
     benchmark::DoNotOptimize(P_AA.data());
     benchmark::ClobberMemory();
@@ -103,14 +101,8 @@ void BM_CompressedGlobalUpdate(benchmark::State& state) {
   const int n = stateDim(state);
   const Eigen::MatrixXd P0 = covariance(n);
   const Eigen::VectorXd x0 = Eigen::VectorXd::Zero(n);
-  std::vector<int> active{0, 1, 2};
-  for (int k = 0; k < kActiveLandmarks; ++k) {  // landmarks spread through the state
-    const int first = 3 + 2 * (k * (n - 3) / 2 / kActiveLandmarks);
-    active.push_back(first);
-    active.push_back(first + 1);
-  }
   const Eigen::MatrixXd H_A = randomMatrix(kRows, kActive, 4);
-  const Eigen::MatrixXd K = 1e-3 * randomMatrix(kActive, kRows, 5);
+  const Eigen::MatrixXd W = 1e-3 * randomMatrix(kActive, kRows, 5);
   const Eigen::LLT<Eigen::MatrixXd> S_llt(Eigen::MatrixXd::Identity(kRows, kRows) * 4.0);
   const Eigen::VectorXd nu = 0.01 * randomMatrix(kRows, 1, 6);
   sylva::detail::CompressedRegion region;
@@ -120,8 +112,12 @@ void BM_CompressedGlobalUpdate(benchmark::State& state) {
     state.PauseTiming();
     P = P0;
     x = x0;
-    region.begin(active);
-    for (int step = 0; step < 10; ++step) region.update(H_A, K, S_llt, nu);
+    region.begin(kActive);
+    for (int step = 0; step < 10; ++step) {
+      region.hphiTransposed(kRows).noalias() = region.phiTransposed() * H_A.transpose();
+      region.stageUpdate(S_llt.matrixL(), nu, W);
+      region.commitUpdate();
+    }
     state.ResumeTiming();
     region.globalUpdate(P, x);
     benchmark::DoNotOptimize(P.data());

@@ -43,18 +43,25 @@ struct Random {
   int uniform(int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); }
 };
 
-MatrixXd gather(const MatrixXd& P, const std::vector<int>& idx) {
-  MatrixXd out(idx.size(), idx.size());
-  for (std::size_t j = 0; j < idx.size(); ++j)
-    for (std::size_t i = 0; i < idx.size(); ++i) out(i, j) = P(idx[i], idx[j]);
+/// P with `d` zero rows and columns inserted before row `at` (and x with d zeros).
+MatrixXd inserted(const MatrixXd& P, int at, int d) {
+  const int n = static_cast<int>(P.rows());
+  MatrixXd out = MatrixXd::Zero(n + d, n + d);
+  out.topLeftCorner(at, at) = P.topLeftCorner(at, at);
+  out.bottomLeftCorner(n - at, at) = P.bottomLeftCorner(n - at, at);
+  out.topRightCorner(at, n - at) = P.topRightCorner(at, n - at);
+  out.bottomRightCorner(n - at, n - at) = P.bottomRightCorner(n - at, n - at);
   return out;
 }
-void scatter(MatrixXd& P, const std::vector<int>& idx, const MatrixXd& block) {
-  for (std::size_t j = 0; j < idx.size(); ++j)
-    for (std::size_t i = 0; i < idx.size(); ++i) P(idx[i], idx[j]) = block(i, j);
+VectorXd inserted(const VectorXd& x, int at, int d) {
+  VectorXd out = VectorXd::Zero(x.size() + d);
+  out.head(at) = x.head(at);
+  out.tail(x.size() - at) = x.tail(x.size() - at);
+  return out;
 }
 
-/// The plain EKF on the whole state and the compressed one, fed the same inputs.
+/// The plain EKF on the whole state and the compressed one, fed the same inputs. The active
+/// part is the first a coordinates of both (the robot, then landmarks), as the filter keeps it.
 struct Pair {
   VectorXd x_plain, x_compressed;
   MatrixXd P_plain, P_compressed;
@@ -64,9 +71,8 @@ struct Pair {
 
   int dim() const { return static_cast<int>(x_plain.size()); }
 
-  /// The robot (coordinates 0..2, the first three of the active list) moves: x_r <- J x_r + u,
-  /// P <- F P F^T + G Q G^T.
-  void predict(const MatrixXd& J, const VectorXd& u, const MatrixXd& Q) {
+  /// The robot (the first three coordinates) moves: x_r <- J x_r + u, P <- F P F^T + G Q G^T.
+  void predict(const Eigen::Matrix3d& J, const VectorXd& u, const MatrixXd& Q) {
     const int n = dim();
     MatrixXd F = MatrixXd::Identity(n, n);
     F.topLeftCorner(kRobotDim, kRobotDim) = J;
@@ -74,23 +80,22 @@ struct Pair {
     P_plain = F * P_plain * F.transpose();
     P_plain.topLeftCorner(kRobotDim, kRobotDim) += Q;
 
-    const std::vector<int>& A = region.active();
     const int a = region.activeDim();
     MatrixXd J_A = MatrixXd::Identity(a, a);
     J_A.topLeftCorner(kRobotDim, kRobotDim) = J;
     x_compressed.head(kRobotDim) = J * x_compressed.head(kRobotDim) + u;
-    MatrixXd P_AA = J_A * gather(P_compressed, A) * J_A.transpose();
+    MatrixXd P_AA = J_A * P_compressed.topLeftCorner(a, a) * J_A.transpose();
     P_AA.topLeftCorner(kRobotDim, kRobotDim) += Q;
-    scatter(P_compressed, A, P_AA);
-    region.predict(0, J);
+    P_compressed.topLeftCorner(a, a) = P_AA;
+    region.predictRobot<kRobotDim>(J);
   }
 
   /// A linear measurement z = H_A x_A + noise of covariance R.
   void update(const MatrixXd& H_A, const MatrixXd& R, const VectorXd& z) {
-    const std::vector<int>& A = region.active();
+    const int a = region.activeDim();
     const int m = static_cast<int>(H_A.rows());
     MatrixXd H = MatrixXd::Zero(m, dim());
-    for (std::size_t k = 0; k < A.size(); ++k) H.col(A[k]) = H_A.col(static_cast<Eigen::Index>(k));
+    H.leftCols(a) = H_A;
     {
       const VectorXd nu = z - H * x_plain;
       const MatrixXd S = H * P_plain * H.transpose() + R;
@@ -99,19 +104,39 @@ struct Pair {
       P_plain -= K * S * K.transpose();
       P_plain = (0.5 * (P_plain + P_plain.transpose())).eval();
     }
-    VectorXd x_A(A.size());
-    for (std::size_t k = 0; k < A.size(); ++k) x_A[static_cast<Eigen::Index>(k)] = x_compressed[A[k]];
-    const MatrixXd P_AA = gather(P_compressed, A);
-    const VectorXd nu = z - H_A * x_A;
+    const MatrixXd P_AA = P_compressed.topLeftCorner(a, a);
+    const VectorXd nu = z - H_A * x_compressed.head(a);
     const MatrixXd S = H_A * P_AA * H_A.transpose() + R;
     const Eigen::LLT<MatrixXd> S_llt(S);
     const MatrixXd K_A = S_llt.solve(H_A * P_AA).transpose();
-    region.update(H_A, K_A, S_llt, nu);
-    x_A += K_A * nu;
+    const MatrixXd W = K_A * MatrixXd(S_llt.matrixL());  // P_AA H_A^T L^-T
+    auto HphiT = region.hphiTransposed(m);
+    HphiT = (H_A * region.phi()).transpose();
+    region.stageUpdate(S_llt.matrixL(), nu, W);
+    region.commitUpdate();
+    x_compressed.head(a) += K_A * nu;
     MatrixXd P_AA_next = P_AA - K_A * S * K_A.transpose();
-    P_AA_next = (0.5 * (P_AA_next + P_AA_next.transpose())).eval();
-    for (std::size_t k = 0; k < A.size(); ++k) x_compressed[A[k]] = x_A[static_cast<Eigen::Index>(k)];
-    scatter(P_compressed, A, P_AA_next);
+    P_compressed.topLeftCorner(a, a) = 0.5 * (P_AA_next + P_AA_next.transpose());
+  }
+
+  /// A landmark of two coordinates enters the state from the robot and a measurement z with
+  /// noise R: l = J_r x_r + J_z z. Both states take it at coordinate a (the compressed one
+  /// appends it to the active part).
+  void add(const MatrixXd& J_r, const MatrixXd& J_z, const VectorXd& z, const MatrixXd& R) {
+    const int a = region.activeDim();
+    const auto extend = [&](VectorXd& x, MatrixXd& P, int cols) {
+      x = inserted(x, a, 2);
+      P = inserted(P, a, 2);
+      x.segment(a, 2) = J_r * x.head(kRobotDim) + J_z * z;
+      const MatrixXd cross = J_r * P.topRows(kRobotDim).leftCols(cols);
+      P.block(a, 0, 2, cols) = cross;
+      P.block(0, a, cols, 2) = cross.transpose();
+      P.block(a, a, 2, 2) = J_r * P.topLeftCorner(kRobotDim, kRobotDim) * J_r.transpose() + J_z * R * J_z.transpose();
+    };
+    extend(x_plain, P_plain, dim() + 2);
+    extend(x_compressed, P_compressed, a + 2);  // its cross-covariance with B stays zero
+    region.stageExtend<kRobotDim>(J_r);
+    region.commitExtend();
   }
 
   /// The global update on the lower triangle, as the filter stores it; the upper triangle is
@@ -122,6 +147,32 @@ struct Pair {
     P_compressed = P_compressed.selfadjointView<Eigen::Lower>();
   }
 
+  /// Both states with their landmark blocks (of two coordinates) in a new random order.
+  void shuffleLandmarks(Random& random) {
+    const int landmarks = (dim() - kRobotDim) / 2;
+    std::vector<int> order(landmarks);
+    std::iota(order.begin(), order.end(), 0);
+    std::shuffle(order.begin(), order.end(), random.rng);
+    Eigen::VectorXi perm(dim());
+    for (int k = 0; k < kRobotDim; ++k) perm[k] = k;
+    for (int k = 0; k < landmarks; ++k) {
+      perm[kRobotDim + 2 * k] = kRobotDim + 2 * order[k];
+      perm[kRobotDim + 2 * k + 1] = kRobotDim + 2 * order[k] + 1;
+    }
+    const auto permuted = [&](VectorXd& x, MatrixXd& P) {
+      VectorXd y(dim());
+      MatrixXd Q(dim(), dim());
+      for (int i = 0; i < dim(); ++i) {
+        y[i] = x[perm[i]];
+        for (int j = 0; j < dim(); ++j) Q(i, j) = P(perm[i], perm[j]);
+      }
+      x = y;
+      P = Q;
+    };
+    permuted(x_plain, P_plain);
+    permuted(x_compressed, P_compressed);
+  }
+
   /// Largest difference between the two, relative to the largest entry.
   double meanDifference() const { return (x_plain - x_compressed).cwiseAbs().maxCoeff() / x_plain.cwiseAbs().maxCoeff(); }
   double covarianceDifference() const {
@@ -129,36 +180,25 @@ struct Pair {
   }
 };
 
-/// The robot and `landmarks` random landmarks (of two coordinates each) out of `total`,
-/// the landmark coordinates in random order.
-std::vector<int> activeSet(Random& random, int landmarks, int total) {
-  std::vector<int> ids(total);
-  std::iota(ids.begin(), ids.end(), 0);
-  std::shuffle(ids.begin(), ids.end(), random.rng);
-  std::vector<int> active{0, 1, 2};
-  std::vector<int> coordinates;
-  for (int k = 0; k < landmarks; ++k) {
-    coordinates.push_back(kRobotDim + 2 * ids[k]);
-    coordinates.push_back(kRobotDim + 2 * ids[k] + 1);
-  }
-  std::shuffle(coordinates.begin(), coordinates.end(), random.rng);
-  active.insert(active.end(), coordinates.begin(), coordinates.end());
-  return active;
-}
-
-/// `steps` local steps in the current region: a prediction or an update of 2 to 6 rows.
-void localSteps(Pair& pair, Random& random, int steps) {
-  const int a = pair.region.activeDim();
+/// `steps` local steps in the current region: a prediction, an update of 2 to 6 rows, or
+/// (with `adds`) a new landmark.
+void localSteps(Pair& pair, Random& random, int steps, bool adds = false) {
   for (int s = 0; s < steps; ++s) {
-    if (random.uniform(0, 1) == 0) {
-      const MatrixXd J = MatrixXd::Identity(kRobotDim, kRobotDim) + 0.1 * random.normal(kRobotDim, kRobotDim);
+    const int kind = random.uniform(0, adds ? 2 : 1);
+    if (kind == 0) {
+      const Eigen::Matrix3d J = Eigen::Matrix3d::Identity() + 0.1 * Eigen::Matrix3d(random.normal(kRobotDim, kRobotDim));
       pair.predict(J, 0.3 * random.normal(kRobotDim, 1), random.spd(kRobotDim, 0.01));
-    } else {
+    } else if (kind == 1) {
       const int m = random.uniform(2, 6);
-      pair.update(random.normal(m, a), random.spd(m, 0.05), 3.0 * random.normal(m, 1));
+      pair.update(random.normal(m, pair.region.activeDim()), random.spd(m, 0.05), 3.0 * random.normal(m, 1));
+    } else {
+      pair.add(random.normal(2, kRobotDim), random.normal(2, 2), random.normal(2, 1), random.spd(2, 0.05));
     }
   }
 }
+
+/// The robot and `landmarks` landmarks of two coordinates: the size of an active part.
+int activeDim(int landmarks) { return kRobotDim + 2 * landmarks; }
 
 }  // namespace
 
@@ -170,7 +210,7 @@ TEST_CASE("compressed EKF: local steps and one global update give the plain EKF'
     const int landmarks = 25;
     const int n = kRobotDim + 2 * landmarks;
     Pair pair(4.0 * random.normal(n, 1), random.spd(n, 1.0));
-    pair.region.begin(activeSet(random, random.uniform(1, 8), landmarks));
+    pair.region.begin(activeDim(random.uniform(1, 8)));
     localSteps(pair, random, 40);
     CHECK(pair.region.steps() == 40);
     // Before the global update the passive part is stale (the test would be empty otherwise).
@@ -192,8 +232,9 @@ TEST_CASE("compressed EKF: a run through several regions stays equal to the plai
     Pair pair(4.0 * random.normal(n, 1), random.spd(n, 1.0));
     for (int region = 0; region < 6; ++region) {
       INFO("region " << region);
-      pair.region.begin(activeSet(random, random.uniform(0, 10), landmarks));
-      localSteps(pair, random, random.uniform(1, 30));
+      pair.shuffleLandmarks(random);
+      pair.region.begin(activeDim(random.uniform(0, 10)));
+      localSteps(pair, random, random.uniform(1, 30), /*adds=*/true);
       pair.globalUpdate();
       CHECK(pair.meanDifference() <= 1e-9);
       CHECK(pair.covarianceDifference() <= 1e-9);
@@ -209,7 +250,7 @@ TEST_CASE("compressed EKF: a global update with no local step changes nothing", 
   VectorXd x = x0;
   MatrixXd P = P0;
   sylva::detail::CompressedRegion region;
-  region.begin(activeSet(random, 4, 12));
+  region.begin(activeDim(4));
   region.globalUpdate(P, x);
   CHECK((x.array() == x0.array()).all());
   CHECK((P.array() == P0.array()).all());
@@ -219,13 +260,13 @@ TEST_CASE("compressed EKF: the accumulators start as identity and zeros, and fol
           "[filter][compressed]") {
   Random random(3);
   sylva::detail::CompressedRegion region;
-  region.begin({0, 1, 2, 7, 8});
+  region.begin(5);
   CHECK(region.activeDim() == 5);
   CHECK(region.phi().isIdentity(0.0));
   CHECK(region.psi().isZero(0.0));
   CHECK(region.theta().isZero(0.0));
-  const MatrixXd J = MatrixXd::Identity(3, 3) + 0.1 * random.normal(3, 3);
-  region.predict(0, J);
+  const Eigen::Matrix3d J = Eigen::Matrix3d::Identity() + 0.1 * Eigen::Matrix3d(random.normal(3, 3));
+  region.predictRobot<3>(J);
   MatrixXd expected = MatrixXd::Identity(5, 5);
   expected.topLeftCorner(3, 3) = J;
   CHECK((region.phi() - expected).cwiseAbs().maxCoeff() == 0.0);

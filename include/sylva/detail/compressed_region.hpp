@@ -3,12 +3,12 @@
 /// `detail::CompressedRegion`: the bookkeeping of the compressed EKF (Guivant and Nebot,
 /// "Optimization of the simultaneous localization and map-building algorithm for real time
 /// implementation", IEEE T-RA 17(3):242-257, 2001; cited by the multisensor thesis as [72]),
-/// the kernel under the filter's compressed policy (issue 19, part 2; not yet used by
-/// `BasicEkf`).
+/// the kernel under `BasicEkf::setCompression`.
 ///
-/// The state splits into an active part A (the robot and the landmarks near it) and a passive
-/// part B. While every prediction moves only A and every update observes only A, the exact
-/// EKF changes the rest in a way that folds into three accumulators of A's size:
+/// The state splits into an active part A, its first a coordinates (the robot and the
+/// landmarks near it; the filter keeps them there), and a passive part B, the rest. While
+/// every prediction moves only A and every update observes only A, the exact EKF changes the
+/// rest in a way that folds into three accumulators of A's size:
 ///
 ///   predict (A moves by J):    P_AB <- J P_AB
 ///   update  (H = [H_A 0]):     x_B  <- x_B  + P_BA H_A^T S^-1 nu
@@ -19,129 +19,191 @@
 ///
 ///   P_AB = phi P_AB0,   x_B = x_B0 + P_BA0 theta,   P_BB = P_BB0 - P_BA0 psi P_AB0,
 ///
-///   phi   <- J phi                                  (predict)
-///   theta <- theta + (H_A phi)^T S^-1 nu            (update, with phi before it)
-///   psi   <- psi + (H_A phi)^T S^-1 (H_A phi)
-///   phi   <- phi - K_A (H_A phi)
+/// and, with S = L L^T, G = L^-1 H_A phi (phi before the update) and W = K_A L = P_AA H_A^T L^-T
+/// (the symmetric form's gain factor):
+///
+///   phi   <- J phi                          (predict)
+///   theta <- theta + G^T L^-1 nu            (update)
+///   psi   <- psi + G^T G
+///   phi   <- phi - W G
 ///
 /// (derived here from the update equations above, by induction over the local steps; the
-/// paper's accumulators are the same up to how S^-1 is factored). A local step costs
-/// O(m a^2) here on top of the active block's own O(m a^2) update, whatever the size of B;
-/// `globalUpdate` brings B up to date in O(n^2 a), once, when the region changes. The result
-/// is the plain EKF's, up to round-off.
+/// paper's accumulators are the same up to how S^-1 is factored; psi stays positive
+/// semi-definite by construction). A local step costs O(m a^2) here on top of the active
+/// block's own O(m a^2) update, whatever the size of B; `globalUpdate` brings B up to date in
+/// O(n^2 a), once, when the region changes. The result is the plain EKF's, up to round-off.
+///
+/// A landmark that enters the state during a region joins A (`extend`): its stored
+/// cross-covariance with B is zero, and its rows of phi, J_new phi_robot, carry the
+/// dependence on B that it inherits from the robot.
 ///
 /// The caller keeps x_A and P_AA up to date with the usual update equations, and leaves every
-/// entry that involves B alone between `begin` and `globalUpdate`.
+/// entry that involves B alone between `begin` and `globalUpdate`. Every change here is split
+/// so that whatever can allocate comes first and changes nothing (`stageUpdate`,
+/// `stageExtend`), and the commit cannot fail.
 
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
-#include <utility>
-#include <vector>
 
 #include "sylva/core/parallel.hpp"
+#include "sylva/core/types.hpp"
 #include "sylva/detail/lower_rank_update.hpp"
 
 namespace sylva::detail {
 
 class CompressedRegion {
  public:
-  /// Enters a region: `active` lists the state coordinates of A (each once, in any order; the
-  /// order is that of every A-sized argument below). Allocates the accumulators.
-  void begin(std::vector<int> active) {
-    active_ = std::move(active);
-    const auto a = static_cast<Eigen::Index>(active_.size());
-    phi_ = Eigen::MatrixXd::Identity(a, a);
-    psi_ = Eigen::MatrixXd::Zero(a, a);
-    theta_ = Eigen::VectorXd::Zero(a);
+  /// Enters a region whose active part is the first `a` coordinates: phi = I, psi = 0,
+  /// theta = 0. Allocates (if it throws, the region is as it was).
+  void begin(int a) {
+    Eigen::MatrixXd phi = Eigen::MatrixXd::Identity(a, a);
+    Eigen::MatrixXd psi = Eigen::MatrixXd::Zero(a, a);
+    Eigen::VectorXd theta = Eigen::VectorXd::Zero(a);
+    phi_.swap(phi);
+    psi_.swap(psi);
+    theta_.swap(theta);
     steps_ = 0;
   }
 
-  const std::vector<int>& active() const { return active_; }
-  int activeDim() const { return static_cast<int>(active_.size()); }
-  /// Local steps (predictions and updates) since `begin`.
+  /// The size a of the active part.
+  int activeDim() const { return static_cast<int>(phi_.rows()); }
+  /// Local steps (predictions and updates) since `begin` or the last global update: while
+  /// there are none, the stored state is up to date.
   long steps() const { return steps_; }
 
-  /// A prediction that moves the active coordinates [offset, offset + J.rows()) by the
-  /// Jacobian J and leaves the others where they are: phi <- J phi on those rows.
-  template <typename Derived>
-  void predict(int offset, const Eigen::MatrixBase<Derived>& J) {
-    const auto r = J.rows();
-    auto rows = workspace(rows_, r, phi_.cols());
-    rows.noalias() = J * phi_.middleRows(offset, r);
-    phi_.middleRows(offset, r) = rows;
+  /// A prediction that moves the robot's coordinates, the first R of A, by J and leaves the
+  /// others where they are: phi <- J phi on those rows. Allocates nothing.
+  template <int R>
+  void predictRobot(const Mat<R, R>& J) {
+    for (Eigen::Index j = 0; j < phi_.cols(); ++j) {
+      const Vec<R> column = phi_.col(j).template head<R>();
+      phi_.col(j).template head<R>() = J * column;
+    }
     ++steps_;
   }
 
-  /// An update that observes only A: H_A (m x a, in the order of `active()`), the active
-  /// block's gain K_A = P_AA H_A^T S^-1 (a x m), the Cholesky factor of S and the innovation
-  /// nu. It reads neither P_AA nor x_A, so it may come before or after the active block's own
-  /// update.
-  template <typename DerivedH, typename DerivedK, typename DerivedNu>
-  void update(const Eigen::MatrixBase<DerivedH>& H_A, const Eigen::MatrixBase<DerivedK>& K_A,
-              const Eigen::LLT<Eigen::MatrixXd>& S_llt, const Eigen::MatrixBase<DerivedNu>& nu) {
-    const auto m = H_A.rows();
-    auto Hphi = workspace(Hphi_, m, phi_.cols());
-    auto SinvHphi = workspace(SinvHphi_, m, phi_.cols());
-    auto Sinv_nu = workspace(Sinv_nu_, m, 1).col(0);
-    Hphi.noalias() = H_A * phi_;
-    SinvHphi = Hphi;
-    S_llt.solveInPlace(SinvHphi);
-    Sinv_nu = nu;
-    S_llt.solveInPlace(Sinv_nu);
-    theta_.noalias() += Hphi.transpose() * Sinv_nu;
-    psi_.noalias() += Hphi.transpose() * SinvHphi;
-    phi_.noalias() -= K_A * Hphi;
+  /// (H_A phi)^T, a x cols, for the caller to fill before `stageUpdate` (the filter applies
+  /// its H^T to phi^T). Grows its workspace, and phi^T's, if needed.
+  Eigen::Map<Eigen::MatrixXd> hphiTransposed(int cols) {
+    const int a = activeDim();
+    return Eigen::Map<Eigen::MatrixXd>(grown(hphi_t_, static_cast<Eigen::Index>(a) * cols), a, cols);
+  }
+  /// phi^T (a x a), copied into a workspace, for the caller's H^T.
+  Eigen::Map<Eigen::MatrixXd> phiTransposed() {
+    const int a = activeDim();
+    Eigen::Map<Eigen::MatrixXd> out(grown(phi_t_, static_cast<Eigen::Index>(a) * a), a, a);
+    out = phi_.transpose();
+    return out;
+  }
+
+  /// Computes an update's changes from (H_A phi)^T (`hphiTransposed`, filled), the Cholesky
+  /// factor L of S, the innovation nu and W = P_AA H_A^T L^-T (a x m); `commitUpdate` applies
+  /// them. Workspaces only: the region is unchanged.
+  template <typename LowerFactor, typename Nu, typename Gain>
+  void stageUpdate(const LowerFactor& L, const Nu& nu, const Gain& W) {
+    const int a = activeDim();
+    const int m = static_cast<int>(nu.size());
+    Eigen::Map<Eigen::MatrixXd> Gt(hphi_t_.data(), a, m);
+    // G = L^-1 (H_A phi), kept transposed: G^T = (H_A phi)^T L^-T.
+    L.transpose().template solveInPlace<Eigen::OnTheRight>(Gt);
+    auto v = Eigen::Map<Eigen::VectorXd>(grown(v_, m), m);
+    v = nu;
+    L.solveInPlace(v);
+    auto d_theta = Eigen::Map<Eigen::VectorXd>(grown(d_theta_, a), a);
+    auto d_psi = Eigen::Map<Eigen::MatrixXd>(grown(d_psi_, static_cast<Eigen::Index>(a) * a), a, a);
+    auto d_phi = Eigen::Map<Eigen::MatrixXd>(grown(d_phi_, static_cast<Eigen::Index>(a) * a), a, a);
+    d_theta.noalias() = Gt * v;
+    d_psi.noalias() = Gt * Gt.transpose();
+    d_phi.noalias() = W * Gt.transpose();
+  }
+  /// Applies the staged update. Allocates nothing.
+  void commitUpdate() {
+    const int a = activeDim();
+    theta_ += Eigen::Map<const Eigen::VectorXd>(d_theta_.data(), a);
+    psi_ += Eigen::Map<const Eigen::MatrixXd>(d_psi_.data(), a, a);
+    phi_ -= Eigen::Map<const Eigen::MatrixXd>(d_phi_.data(), a, a);
+    ++steps_;
+  }
+
+  /// Stages A's growth by a landmark of d coordinates, appended to A, that depends on B only
+  /// through the robot (its initialization reads the robot and a measurement): its rows of phi
+  /// are J_robot phi_robot (J_robot: d x R), its stored cross-covariance with B is zero.
+  /// Allocates the grown accumulators; `commitExtend` swaps them in.
+  template <int R, typename JRobot>
+  void stageExtend(const JRobot& J_robot) {
+    const int a = activeDim();
+    const auto d = J_robot.rows();
+    staged_phi_.resize(a + d, a + d);
+    staged_psi_.resize(a + d, a + d);
+    staged_theta_.resize(a + d);
+    staged_phi_.setZero();
+    staged_psi_.setZero();
+    staged_theta_.setZero();
+    staged_phi_.topLeftCorner(a, a) = phi_;
+    staged_phi_.bottomLeftCorner(d, a).noalias() = J_robot * phi_.template topRows<R>();
+    staged_psi_.topLeftCorner(a, a) = psi_;
+    staged_theta_.head(a) = theta_;
+  }
+  /// Swaps in the staged accumulators. Allocates nothing.
+  void commitExtend() {
+    phi_.swap(staged_phi_);
+    psi_.swap(staged_psi_);
+    theta_.swap(staged_theta_);
     ++steps_;
   }
 
   /// Brings the passive part up to date, on the filter's storage: `P` holds the covariance in
-  /// its lower triangle (its strictly upper part is neither read nor written) and `x` the
-  /// mean, both with their A-only entries kept current by the caller. With V = P_BA0 (n x a,
-  /// the rows of A zero):
-  ///   x   += V theta
-  ///   P_BB -= V psi V^T, as P -= W W^T with W = V Q sqrt(D) from psi = Q D Q^T (LDLT with
-  ///          pivoting; psi is a sum of positive semi-definite terms, so D >= 0 but for
-  ///          round-off, which is clamped), through the filter's tiled lower rank update
-  ///   P_BA = V phi^T.
+  /// its lower triangle (n x n; its strictly upper part is neither read nor written) and `x`
+  /// the mean, both with their A entries kept current by the caller. With V = P_BA0 (the
+  /// stored (n - a) x a block below A):
+  ///   x_B  += V theta
+  ///   P_BB -= V psi V^T, as W W^T with W = V Q sqrt(D) from psi = Q D Q^T (LDLT with
+  ///           pivoting; psi is positive semi-definite, so D >= 0 but for round-off, which is
+  ///           clamped), through the filter's tiled lower rank update
+  ///   P_BA  = V phi^T.
   /// Everything is computed in workspaces before anything is written, so a failed allocation
   /// leaves P and x as they were. Then starts over in the same region.
   template <typename MatrixP, typename VectorX>
-  void globalUpdate(MatrixP& P, VectorX& x, Parallel* parallel = nullptr) {
-    const Eigen::Index n = P.rows();
-    const auto a = static_cast<Eigen::Index>(active_.size());
-    in_active_.assign(static_cast<std::size_t>(n), 0);
-    for (int i : active_) in_active_[static_cast<std::size_t>(i)] = 1;
-    const auto lower = [&P](Eigen::Index i, Eigen::Index j) { return i >= j ? P(i, j) : P(j, i); };
-    auto V = workspace(V_, n, a);
-    for (Eigen::Index k = 0; k < a; ++k)
-      for (Eigen::Index i = 0; i < n; ++i) V(i, k) = in_active_[static_cast<std::size_t>(i)] ? 0.0 : lower(i, active_[k]);
-    psi_ldlt_.compute(psi_);
-    auto QsqrtD = workspace(QsqrtD_, a, a);
-    QsqrtD = psi_ldlt_.matrixL();
-    QsqrtD = psi_ldlt_.transpositionsP().transpose() * QsqrtD;
-    for (Eigen::Index k = 0; k < a; ++k) QsqrtD.col(k) *= std::sqrt(std::max(0.0, psi_ldlt_.vectorD()[k]));
-    auto W = workspace(W_, n, a);
-    W.noalias() = V * QsqrtD;
-    auto U = workspace(U_, n, a);
-    U.noalias() = V * phi_.transpose();
-    auto dx = workspace(dx_, n, 1).col(0);
-    dx.noalias() = V * theta_;
-    // Nothing below allocates.
-    x += dx;
-    subtractLowerRankUpdate(P.topLeftCorner(n, n), W, parallel);
-    for (Eigen::Index k = 0; k < a; ++k) {
-      const Eigen::Index j = active_[k];
-      for (Eigen::Index i = 0; i < n; ++i) {
-        if (in_active_[static_cast<std::size_t>(i)]) continue;
-        (i >= j ? P(i, j) : P(j, i)) = U(i, k);
-      }
+  void globalUpdate(MatrixP&& P, VectorX&& x, Parallel* parallel = nullptr) {
+    const int a = activeDim();
+    const Eigen::Index b = P.rows() - a;
+    if (steps_ == 0) return;
+    if (b > 0) {
+      const auto V = P.block(a, 0, b, a);
+      psi_ldlt_.compute(psi_);
+      auto QsqrtD = Eigen::Map<Eigen::MatrixXd>(grown(q_sqrt_d_, static_cast<Eigen::Index>(a) * a), a, a);
+      QsqrtD = psi_ldlt_.matrixL();
+      QsqrtD = psi_ldlt_.transpositionsP().transpose() * QsqrtD;
+      for (int k = 0; k < a; ++k) QsqrtD.col(k) *= std::sqrt(std::max(0.0, psi_ldlt_.vectorD()[k]));
+      auto W = Eigen::Map<Eigen::MatrixXd>(grown(w_, b * a), b, a);
+      W.noalias() = V * QsqrtD;
+      auto U = Eigen::Map<Eigen::MatrixXd>(grown(u_, b * a), b, a);
+      U.noalias() = V * phi_.transpose();
+      auto dx = Eigen::Map<Eigen::VectorXd>(grown(dx_, b), b);
+      dx.noalias() = V * theta_;
+      // Nothing below allocates.
+      x.tail(b) += dx;
+      subtractLowerRankUpdate(P.bottomRightCorner(b, b), W, parallel);
+      P.block(a, 0, b, a) = U;
     }
     phi_.setIdentity();
     psi_.setZero();
     theta_.setZero();
     steps_ = 0;
+  }
+
+  /// The current value of blocks that involve B, from the stored ones (for reads between
+  /// global updates). `V_row` is the stored rows of B against A (rows x a) for a block of B:
+  ///   x_B  = x_B0 + V theta,   P_BA = V phi^T,   P_BB' = P_BB'0 - V psi V'^T.
+  template <typename V>
+  auto passiveMeanCorrection(const V& V_rows) const { return V_rows * theta_; }
+  template <typename V>
+  auto passiveActiveBlock(const V& V_rows) const { return V_rows * phi_.transpose(); }
+  template <typename V1, typename V2>
+  auto passivePassiveCorrection(const V1& V_rows, const V2& V_cols) const {
+    return V_rows * psi_ * V_cols.transpose();
   }
 
   /// The accumulators (for tests): phi (a x a), psi (a x a, symmetric), theta (a).
@@ -150,20 +212,19 @@ class CompressedRegion {
   const Eigen::VectorXd& theta() const { return theta_; }
 
  private:
-  std::vector<int> active_;
   Eigen::MatrixXd phi_, psi_;
   Eigen::VectorXd theta_;
   long steps_ = 0;
   // Workspaces: they grow to the largest step (and state) seen and then stay.
-  Eigen::MatrixXd rows_, Hphi_, SinvHphi_, Sinv_nu_;
-  Eigen::MatrixXd V_, W_, U_, dx_, QsqrtD_;
+  Eigen::VectorXd hphi_t_, phi_t_, v_, d_theta_, d_psi_, d_phi_;
+  Eigen::MatrixXd staged_phi_, staged_psi_;
+  Eigen::VectorXd staged_theta_;
+  Eigen::VectorXd q_sqrt_d_, w_, u_, dx_;
   Eigen::LDLT<Eigen::MatrixXd> psi_ldlt_;
-  std::vector<char> in_active_;
 
-  /// The top rows x cols corner of `storage`, grown if it is smaller.
-  static Eigen::Block<Eigen::MatrixXd> workspace(Eigen::MatrixXd& storage, Eigen::Index rows, Eigen::Index cols) {
-    if (storage.rows() < rows || storage.cols() != cols) storage.resize(std::max(rows, storage.rows()), cols);
-    return storage.topRows(rows);
+  static double* grown(Eigen::VectorXd& buffer, Eigen::Index size) {
+    if (buffer.size() < size) buffer.resize(size);
+    return buffer.data();
   }
 };
 
