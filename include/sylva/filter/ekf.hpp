@@ -422,35 +422,21 @@ class BasicEkf {
     if (compressed()) enterRegionHolding([](Id) { return false; });
   }
 
-  /// A selector for `setCompression`: the landmarks within `radius_m` of a point `ahead_m`
-  /// in front of the robot (along its heading; 0: the robot's own position), for a robot
-  /// that declares kPlanarPosition (every Pose2D robot; a point ahead needs kPlanarHeading
-  /// too). A robot that moves forward stays in a region centred ahead of it about twice as
-  /// long as in one centred on it: with a sensor of range s, ahead_m = radius_m - s lets it
-  /// travel 2 (radius_m - s) before a landmark outside the region comes into view. Landmark
-  /// types without a planar position (kPlanarPosition) are always active.
-  static RegionSelector withinRadius(double radius_m, double ahead_m = 0.0) {
+  /// A selector for `setCompression`: the landmarks within `radius_m` of the robot's planar
+  /// position, for a robot that declares kPlanarPosition (every Pose2D robot). Landmark types
+  /// without a planar position (kPlanarPosition) are always active.
+  static RegionSelector withinRadius(double radius_m) {
     static_assert(detail::HasPlanarPosition<Robot>::value,
                   "withinRadius needs a robot that declares kPlanarPosition (every Pose2D robot)");
-    if (!(radius_m > 0.0) || !std::isfinite(radius_m) || !std::isfinite(ahead_m))
-      fail(ErrorCode::kInvalidArgument, "Ekf::withinRadius: the radius must be positive and finite, and the "
-                                        "distance ahead finite");
-    if constexpr (!detail::HasPlanarHeading<Robot>::value) {
-      if (ahead_m != 0.0)
-        fail(ErrorCode::kInvalidArgument, "Ekf::withinRadius: a centre ahead of the robot needs a robot that "
-                                          "declares kPlanarHeading");
-    }
-    return [radius_m, ahead_m](const BasicEkf& ekf, const LandmarkSlot& slot) {
-      Vec<2> centre = ekf.robotMean().template segment<2>(Robot::kPlanarPosition);
-      if constexpr (detail::HasPlanarHeading<Robot>::value) {
-        const double heading = ekf.robotMean()[Robot::kPlanarHeading];
-        centre += ahead_m * Vec<2>(std::cos(heading), std::sin(heading));
-      }
+    if (!(radius_m > 0.0) || !std::isfinite(radius_m))
+      fail(ErrorCode::kInvalidArgument, "Ekf::withinRadius: the radius must be positive and finite");
+    return [radius_m](const BasicEkf& ekf, const LandmarkSlot& slot) {
+      const Vec<2> robot = ekf.robotMean().template segment<2>(Robot::kPlanarPosition);
       return ekf.visit(slot.id, [&](auto tag) {
         using L = typename decltype(tag)::type;
         if constexpr (detail::HasPlanarPosition<L>::value) {
           const Vec<2> p = ekf.template landmarkMean<L>(slot.id).template segment<2>(L::kPlanarPosition);
-          return (p - centre).squaredNorm() <= radius_m * radius_m;
+          return (p - robot).squaredNorm() <= radius_m * radius_m;
         } else {
           return true;
         }
@@ -1406,12 +1392,7 @@ class BasicEkf {
       identity = identity && s.offset == row;
       for (int i = 0; i < s.dim; ++i) region_perm_[static_cast<std::size_t>(row++)] = s.offset + i;
     }
-    if (!identity) {
-      if (region_scratch_.size() < n) region_scratch_.resize(n);
-      // The covariance is permuted into a second matrix of the storage's size, which then
-      // takes the storage's place (so compression holds two while it reorders).
-      if (region_spare_.rows() != cov_.capacity()) region_spare_.resize(cov_.capacity(), cov_.capacity());
-    }
+    if (!identity && region_scratch_.size() < static_cast<Eigen::Index>(n) * n) region_scratch_.resize(static_cast<Eigen::Index>(n) * n);
     region_.stageBegin(a);
     // From here on nothing can fail.
     if (!identity) {
@@ -1419,7 +1400,7 @@ class BasicEkf {
         for (int i = 0; i < n; ++i) region_scratch_[i] = (*v)[region_perm_[static_cast<std::size_t>(i)]];
         v->head(n) = region_scratch_.head(n);
       }
-      cov_.permute(region_perm_, region_spare_);
+      cov_.permute(region_perm_, region_scratch_.data());
       slots_.reorder(region_order_, kRobotDim);
       revision_ = detail::nextRevision();  // linearizations made before name the old rows
     }
@@ -1885,7 +1866,6 @@ class BasicEkf {
   std::vector<LandmarkSlot> region_order_;
   std::vector<int> region_perm_;
   Eigen::VectorXd region_scratch_;
-  Eigen::MatrixXd region_spare_;
 };
 
 /// The filter with the default covariance update (symmetric form, one triangle).

@@ -113,28 +113,13 @@ class LowerCovariance {
   }
 
   /// P <- P(perm, perm): row and column i of the result are perm[i] of P (perm: a
-  /// permutation of 0..n-1). The result is written into `spare`, a matrix of the storage's
-  /// size, which then becomes the storage (the old storage is handed back in `spare`), so
-  /// nothing is allocated. Each column is copied in runs of rows that stay consecutive.
+  /// permutation of 0..n-1). `scratch` must hold at least n x n doubles; allocates nothing.
   template <typename Perm>
-  void permute(const Perm& perm, Eigen::MatrixXd& spare) {
-    for (int j = 0; j < n_; ++j) {
-      const int pj = perm[j];
-      double* dst = spare.col(j).data();
-      for (int i = j; i < n_;) {
-        const int r0 = perm[i];
-        int k = 1;
-        while (i + k < n_ && perm[i + k] == r0 + k) ++k;
-        if (r0 >= pj) {  // stored in column pj, below its diagonal
-          const double* src = m_.col(pj).data() + r0;
-          std::copy(src, src + k, dst + i);
-        } else {  // above the diagonal (all or part): read the transposed entries
-          for (int t = 0; t < k; ++t) dst[i + t] = (*this)(r0 + t, pj);
-        }
-        i += k;
-      }
-    }
-    m_.swap(spare);
+  void permute(const Perm& perm, double* scratch) {
+    Eigen::Map<Eigen::MatrixXd> out(scratch, n_, n_);
+    for (int j = 0; j < n_; ++j)
+      for (int i = j; i < n_; ++i) out(i, j) = (*this)(perm[i], perm[j]);
+    for (int j = 0; j < n_; ++j) std::copy(&out(j, j), &out(0, j) + n_, m_.col(j).data() + j);
   }
 
   /// P_rr <- P_rr_next (symmetrized), P_mr <- P_mr F^T: the robot block (the first R rows)
