@@ -21,10 +21,6 @@
 ///   remove             O(n^2)    rows and columns are moved up
 ///   reparametrize      O(n^2)    covariance carried through the conversion's Jacobian
 ///
-/// The compressed EKF (`setCompression`; Guivant and Nebot 2001) updates only an active part
-/// of the state between global updates: predict O(a), update O(m a^2), a global update
-/// O(n^2 a) when the active part changes. See docs/filter.md ("Compressed EKF").
-///
 /// Storage: the covariance lives in a capacity x capacity column-major matrix of which the
 /// top-left n x n corner is in use and only its lower triangle is authoritative. Nothing is
 /// allocated by `predict` or `update` once the workspace has seen the largest state.
@@ -37,7 +33,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <functional>
 #include <iterator>
 #include <limits>
 #include <sstream>
@@ -53,7 +48,6 @@
 #include "sylva/core/parallel.hpp"
 #include "sylva/core/gauge.hpp"
 #include "sylva/core/types.hpp"
-#include "sylva/detail/compressed_region.hpp"
 #include "sylva/detail/model_traits.hpp"
 #include "sylva/diff/evaluate.hpp"
 #include "sylva/filter/linearization.hpp"
@@ -197,7 +191,6 @@ class BatchLinearizations {
   Eigen::Map<Mat<M, R>> J_z_x(int a) const { return Eigen::Map<Mat<M, R>>(data_ + a * kStride); }
   Eigen::Map<Mat<M, L>> J_z_l(int a) const { return Eigen::Map<Mat<M, L>>(data_ + a * kStride + M * R); }
   int offset(int a) const { return offsets_[static_cast<std::size_t>(a)]; }
-  void setOffset(int a, int offset) { offsets_[static_cast<std::size_t>(a)] = offset; }
 
  private:
   std::vector<int>& offsets_;
@@ -319,11 +312,6 @@ class BasicEkf {
                          "TreeXYZR, InverseDepthRadius); ") +
                  typesNamed());
     }
-    if (compressed() && (point == LinearizationPoint::kInvariant || point == LinearizationPoint::kObservabilityConstrained))
-      fail(ErrorCode::kInvalidArgument,
-           "Ekf::setLinearizationPoint: the invariant and observability-constrained updates transform the whole "
-           "covariance after each update, which the compressed EKF does not keep current; turn compression off "
-           "first (setCompression(nullptr))");
     linearization_ = point;
   }
   LinearizationPoint linearizationPoint() const { return linearization_; }
@@ -352,97 +340,6 @@ class BasicEkf {
   /// core/thread_pool.hpp.
   void setParallel(Parallel* parallel) { parallel_ = parallel; }
   Parallel* parallel() const { return parallel_; }
-
-  // ---------------------------------------------------------------- compressed EKF
-
-  /// Chooses the landmarks of the compressed EKF's active part when a region is entered.
-  using RegionSelector = std::function<bool(const BasicEkf&, const LandmarkSlot&)>;
-
-  /// Turns the compressed EKF on (Guivant and Nebot 2001), with `select` choosing the
-  /// landmarks of the active part, or off (nullptr: a global update, then the plain filter).
-  ///
-  /// The active part A is the robot, the landmarks `select` chose when the region was
-  /// entered, and every landmark added since. Predictions and updates that see only A cost
-  /// O(a) and O(m a^2) instead of O(n) and O(n^2 m); the rest of the state, B, is carried as
-  /// accumulated products (detail::CompressedRegion) and brought up to date by a global
-  /// update, O(n^2 a). The filter enters a new region (a global update, `select` asked
-  /// again, the state reordered so that A leads it; O(n^2)) when:
-  ///   - an update observes a landmark of B (it joins the new region whatever `select` says),
-  ///   - the caller calls `enterRegion()` (e.g. when the robot has moved on),
-  ///   - a landmark of A is reparametrized.
-  /// Everything read through the public accessors is up to date: the landmark accessors,
-  /// `mean()` and `covariance()` correct what B holds on the fly (O(a^2) per block, O(n^2 a)
-  /// for the whole covariance), and `covarianceView()` refuses (kInvalidArgument) until
-  /// `synchronize()`. Estimates equal the plain filter's up to round-off.
-  ///
-  /// Refused (kInvalidArgument, the filter unchanged) with LinearizationPoint::kInvariant or
-  /// kObservabilityConstrained, whose transports change the whole covariance at every update.
-  /// The region is entered at once: `select` is asked about every landmark now.
-  void setCompression(RegionSelector select) {
-    if (!select) {
-      synchronize();
-      region_select_ = nullptr;
-      return;
-    }
-    if (linearization_ == LinearizationPoint::kInvariant || linearization_ == LinearizationPoint::kObservabilityConstrained)
-      fail(ErrorCode::kInvalidArgument,
-           "Ekf::setCompression: the compressed EKF cannot run the invariant or observability-constrained "
-           "update (they transform the whole covariance after each update)");
-    synchronize();
-    RegionSelector previous = std::move(region_select_);
-    region_select_ = std::move(select);
-    try {
-      enterRegionHolding([](Id) { return false; });
-    } catch (...) {
-      region_select_ = std::move(previous);
-      throw;
-    }
-  }
-  bool compressed() const { return static_cast<bool>(region_select_); }
-
-  /// The compressed EKF's active part: its rows (the robot and its landmarks lead the state),
-  /// dim() when compression is off.
-  int activeDim() const { return compressed() ? region_.activeDim() : dim(); }
-  /// Global updates so far (for reports).
-  long globalUpdates() const { return global_updates_; }
-
-  /// Brings the whole state up to date (the compressed EKF's global update, O(n^2 a)); a
-  /// no-op when compression is off or nothing happened since the last one. Changes no
-  /// estimate.
-  void synchronize() {
-    if (!compressed() || region_.steps() == 0) return;
-    region_.globalUpdate(cov_.inUse(), mean_.head(dim()), parallel_);
-    ++global_updates_;
-  }
-
-  /// Enters a new region: a global update, then the landmarks the selector chooses now become
-  /// the active part (the state is reordered so that they lead it). No-op when compression is
-  /// off. Changes no estimate.
-  void enterRegion() {
-    if (compressed()) enterRegionHolding([](Id) { return false; });
-  }
-
-  /// A selector for `setCompression`: the landmarks within `radius_m` of the robot's planar
-  /// position, for a robot that declares kPlanarPosition (every Pose2D robot). Landmark types
-  /// without a planar position (kPlanarPosition) are always active.
-  static RegionSelector withinRadius(double radius_m) {
-    static_assert(detail::HasPlanarPosition<Robot>::value,
-                  "withinRadius needs a robot that declares kPlanarPosition (every Pose2D robot)");
-    if (!(radius_m > 0.0) || !std::isfinite(radius_m))
-      fail(ErrorCode::kInvalidArgument, "Ekf::withinRadius: the radius must be positive and finite");
-    return [radius_m](const BasicEkf& ekf, const LandmarkSlot& slot) {
-      const Vec<2> robot = ekf.robotMean().template segment<2>(Robot::kPlanarPosition);
-      return ekf.visit(slot.id, [&](auto tag) {
-        using L = typename decltype(tag)::type;
-        if constexpr (detail::HasPlanarPosition<L>::value) {
-          const Vec<2> p = ekf.template landmarkMean<L>(slot.id).template segment<2>(L::kPlanarPosition);
-          return (p - robot).squaredNorm() <= radius_m * radius_m;
-        } else {
-          return true;
-        }
-      });
-    };
-  }
 
   /// The robot's true state, for LinearizationPoint::kIdeal: predict linearizes the motion
   /// about it, and updates the measurement models. Each predict uses it up, so hand
@@ -510,21 +407,21 @@ class BasicEkf {
   template <typename Landmark>
   Vec<Landmark::kDim> landmarkMean(Id id) const {
     const LandmarkSlot& s = typedSlot<Landmark>(id, "landmarkMean");
-    return currentMean<Landmark::kDim>(s.offset);
+    return mean_.template segment<Landmark::kDim>(s.offset);
   }
 
   /// Marginal covariance of landmark `id`.
   template <typename Landmark>
   Mat<Landmark::kDim, Landmark::kDim> landmarkCovariance(Id id) const {
     const LandmarkSlot& s = typedSlot<Landmark>(id, "landmarkCovariance");
-    return currentBlock<Landmark::kDim, Landmark::kDim>(s.offset, s.offset);
+    return cov_.template block<Landmark::kDim, Landmark::kDim>(s.offset, s.offset);
   }
 
   /// Cross-covariance between the robot and landmark `id`.
   template <typename Landmark>
   Mat<kRobotDim, Landmark::kDim> robotLandmarkCovariance(Id id) const {
     const LandmarkSlot& s = typedSlot<Landmark>(id, "robotLandmarkCovariance");
-    return currentBlock<kRobotDim, Landmark::kDim>(0, s.offset);
+    return cov_.template block<kRobotDim, Landmark::kDim>(0, s.offset);
   }
 
   /// Copy of the whole mean: the robot's state, then the landmark blocks. Its length is n
@@ -533,11 +430,6 @@ class BasicEkf {
   Eigen::VectorXd mean() const {
     Eigen::VectorXd out(dim() - kRobotDim + kRobotStateDim);
     out << robot_mean_, mean_.segment(kRobotDim, dim() - kRobotDim);
-    if (pending()) {
-      const int a = region_.activeDim();
-      const int b = dim() - a;
-      out.tail(b) += region_.passiveMeanCorrection(cov_.stored().block(a, 0, b, a));
-    }
     return out;
   }
 
@@ -545,29 +437,12 @@ class BasicEkf {
   /// in products (`ekf.covarianceView() * v`) or assign it to a dense matrix. Its entries
   /// above the diagonal are not stored: read single entries from the lower triangle, or
   /// through the typed blocks below. Valid until a landmark is added, removed or
-  /// reparametrized (the storage may move). With the compressed EKF, call `synchronize()`
-  /// first: the stored passive part is refused as stale (kInvalidArgument).
-  auto covarianceView() const {
-    if (pending())
-      fail(ErrorCode::kInvalidArgument,
-           "Ekf::covarianceView: the compressed EKF's stored covariance is stale outside its active part; call "
-           "synchronize() first (or read covariance(), which corrects it)");
-    return cov_.inUse().template selfadjointView<Eigen::Lower>();
-  }
+  /// reparametrized (the storage may move).
+  auto covarianceView() const { return cov_.inUse().template selfadjointView<Eigen::Lower>(); }
 
-  /// Copy of the whole covariance (n x n, both triangles filled). O(n^2 a) with the
-  /// compressed EKF between global updates.
+  /// Copy of the whole covariance (n x n, both triangles filled).
   Eigen::MatrixXd covariance() const {
     Eigen::MatrixXd full = cov_.inUse().template selfadjointView<Eigen::Lower>();
-    if (pending()) {
-      // P_BA = V phi^T, P_BB = P_BB0 - V psi V^T (detail::CompressedRegion), V = P_BA0.
-      const int a = region_.activeDim();
-      const int b = dim() - a;
-      const auto V = cov_.stored().block(a, 0, b, a);
-      full.block(a, 0, b, a) = region_.passiveActiveBlock(V);
-      full.block(0, a, a, b) = full.block(a, 0, b, a).transpose();
-      full.block(a, a, b, b) -= region_.passivePassiveCorrection(V, V);
-    }
     return full;
   }
 
@@ -632,9 +507,7 @@ class BasicEkf {
     robot_mean_ = next;
     robot_first_ = next;
     robot_ideal_.setConstant(std::numeric_limits<double>::quiet_NaN());
-    const ActiveWindow window(cov_, activeDim());
-    cov_.template transformRobotBlock<kRobotDim>(F, P_rr_next);  // eq. 2.27 (on A: compressed)
-    if (compressed()) region_.template predictRobot<kRobotDim>(F);
+    cov_.template transformRobotBlock<kRobotDim>(F, P_rr_next);  // eq. 2.27
   }
 
   // ---------------------------------------------------------------- update
@@ -657,8 +530,6 @@ class BasicEkf {
     constexpr int L = Model::Landmark::kDim;
     if (!z.allFinite()) fail(ErrorCode::kNonFinite, nameOf<Model>() + ": measurement is not finite");
     checkMeasurement(model, z);
-    const Id ids[] = {id};
-    ensureActive(ids, [](Id i) { return i; });
     const Linearization<Model, kRobotDim> lin = linearize(model, id);
     Vec<M> nu = detail::residual(model, z, lin.z_hat);
     if (!nu.allFinite()) fail(ErrorCode::kNonFinite, nameOf<Model>() + ": innovation is not finite");
@@ -666,7 +537,6 @@ class BasicEkf {
     // The linearization the gain uses: the prior's, or the last iterate's.
     detail::BatchLinearizations<M, kRobotDim, L> lins(batch_.lins, batch_.offsets, 1);
     lins.store(0, lin);
-    const ActiveWindow window(cov_, activeDim());
     auto PHt = workspaceMatrix<M>(0);
     Mat<M, M> S;
     Eigen::LLT<Mat<M, M>> llt;
@@ -755,23 +625,13 @@ class BasicEkf {
         fail(ErrorCode::kNonFinite, nameOf<Model>() + ": measurement " + std::to_string(i) +
                                         " of the batch is not finite");
       checkMeasurement(model, obs.z, "batch", i);
-      if (given) checkedLinearization(given[i], obs.id, i);
-      ++i;
-    }
-    // Compressed: a landmark of the passive part makes the filter enter a region that holds
-    // it (the given linearizations stay valid: no estimate changes, only where blocks lie).
-    const bool moved = ensureActive(observations, [](const Observation<Model>& obs) { return obs.id; });
-    i = 0;
-    for (const Observation<Model>& obs : observations) {
-      const Linearization<Model, kRobotDim> lin = given ? given[i] : linearize(model, obs.id);
+      const Linearization<Model, kRobotDim> lin = given ? checkedLinearization(given[i], obs.id, i) : linearize(model, obs.id);
       lins.store(i, lin);
-      if (moved && given) lins.setOffset(i, slots_[slotIndex(obs.id)].offset);
       nu.template segment<M>(i * M) = detail::residual(model, obs.z, lin.z_hat);
       ++i;
     }
     if (!nu.allFinite()) fail(ErrorCode::kNonFinite, nameOf<Model>() + ": innovation is not finite");
 
-    const ActiveWindow window(cov_, activeDim());
     auto PHt = workspaceMatrix<Eigen::Dynamic>(total);
     auto S = batch_.matrix(detail::BatchWorkspace::kInnovationCovariance, total);
     // P H^T and S = H P H^T + R (lower triangle, block (a, b) for b <= a, from the columns of
@@ -863,7 +723,7 @@ class BasicEkf {
     Linearization<Model, kRobotDim> lin;
     lin.landmark_offset = s.offset;
     lin.revision = revision_;
-    const Vec<L> landmark = currentMean<L>(s.offset);
+    const Vec<L> landmark = mean_.template segment<L>(s.offset);
     if (linearization_ == LinearizationPoint::kFirstEstimates) {
       lin.z_hat = detail::evaluateOn<Robot>(model, robotMean(), landmark, {}, {});
       evaluateWithJacobians(model, robot_first_, Vec<L>(first_.template segment<L>(s.offset)), lin);
@@ -891,16 +751,6 @@ class BasicEkf {
   template <typename ModelA, typename ModelB>
   Mat<ModelA::kDim, ModelB::kDim> crossCovariance(const Linearization<ModelA, kRobotDim>& a,
                                                    const Linearization<ModelB, kRobotDim>& b) const {
-    if (pending() && std::max(a.landmark_offset, b.landmark_offset) >= region_.activeDim()) {
-      constexpr int La = ModelA::Landmark::kDim;
-      constexpr int Lb = ModelB::Landmark::kDim;
-      const int oa = a.landmark_offset;
-      const int ob = b.landmark_offset;
-      return a.J_z_x * (currentBlock<kRobotDim, kRobotDim>(0, 0) * b.J_z_x.transpose() +
-                        currentBlock<kRobotDim, Lb>(0, ob) * b.J_z_l.transpose()) +
-             a.J_z_l * (currentBlock<La, kRobotDim>(oa, 0) * b.J_z_x.transpose() +
-                        currentBlock<La, Lb>(oa, ob) * b.J_z_l.transpose());
-    }
     return cov_.template crossCovariance<kRobotDim>(a.J_z_x, a.J_z_l, a.landmark_offset, b.J_z_x, b.J_z_l,
                                                     b.landmark_offset);
   }
@@ -931,9 +781,7 @@ class BasicEkf {
 
   /// Adds landmark `id` from its first observation `z` through the inverse model
   /// (augmentation, eq. 2.33-2.39): the new block's cross-covariances are J_l_x P_r* and its
-  /// covariance J_l_x P_rr J_l_x^T + J_l_z R J_l_z^T. O(n). With the compressed EKF the new
-  /// landmark joins the active part, at its end: O(a) arithmetic, and the passive part's
-  /// storage moves down by its rows (O(n^2) memory moves, no flops).
+  /// covariance J_l_x P_rr J_l_x^T + J_l_z R J_l_z^T. O(n).
   template <typename InverseModel>
   void add(Id id,
            const InverseModel& inverse,
@@ -967,10 +815,8 @@ class BasicEkf {
     Mat<L, L> P_ll = J_P_rr * J_l_x.transpose() + J_l_z * noise.covariance() * J_l_z.transpose();
     P_ll = (0.5 * (P_ll + P_ll.transpose())).eval();
     // The new block's rows against the landmarks, J_l_x P_rm, computed before anything is
-    // written: the product (and its buffer) may allocate for a large state. Compressed: the
-    // active landmarks only (its cross-covariance with the passive part is carried by the
-    // region's accumulators, and stored as zero).
-    const int m = activeDim() - kRobotDim;
+    // written: the product (and its buffer) may allocate for a large state.
+    const int m = dim() - kRobotDim;
     const Eigen::Matrix<double, L, Eigen::Dynamic> J_P_rm = J_l_x * cov_.stored().block(kRobotDim, 0, m, kRobotDim).transpose();
     if (!P_ll.allFinite() || !J_P_rr.allFinite() || !J_P_rm.allFinite())
       fail(ErrorCode::kNonFinite, std::string(InverseModel::kName) + ": the new landmark's covariance is not finite "
@@ -980,17 +826,8 @@ class BasicEkf {
     // index (the last thing that can fail).
     slots_.reserveOne();
     ensureCapacity(dim() + L);
-    const int off = activeDim();
-    if (compressed()) {
-      region_.template stageExtend<kRobotDim>(J_l_x);
-      slots_.insertAt(activeSlotCount(), LandmarkSlot{id, typeIndexOf<Landmark>(), off, L});
-      // From here on nothing can fail.
-      insertRows(off, L);
-      region_.commitExtend();
-    } else {
-      slots_.append(LandmarkSlot{id, typeIndexOf<Landmark>(), off, L});
-      cov_.setDim(dim() + L);
-    }
+    const int off = dim();
+    slots_.append(LandmarkSlot{id, typeIndexOf<Landmark>(), off, L});
     // From here on nothing can fail.
     mean_.template segment<L>(off) = l;
     detail::normalize<Landmark>(mean_.template segment<L>(off));
@@ -1000,24 +837,16 @@ class BasicEkf {
     cov_.stored().template block<L, kRobotDim>(off, 0) = J_P_rr;
     if (m > 0) cov_.stored().block(off, kRobotDim, L, m) = J_P_rm;
     cov_.stored().template block<L, L>(off, off) = P_ll;
+    cov_.setDim(dim() + L);
   }
 
-  /// Removes landmark `id`: its rows and columns leave the state. O(n^2) (moves). With the
-  /// compressed EKF, removing an active landmark costs a global update first.
+  /// Removes landmark `id`: its rows and columns leave the state. O(n^2) (moves).
   void remove(Id id) {
     revision_ = detail::nextRevision();
     const std::size_t k = slotIndex(id);
     const LandmarkSlot s = slots_[k];
-    const bool active = compressed() && s.offset < region_.activeDim();
-    if (active) {
-      // The passive part's accumulators refer to this block's stored cross-covariances.
-      synchronize();
-      region_.stageBegin(region_.activeDim() - s.dim);
-    }
-    // From here on nothing can fail.
     eraseBlock(s.offset, s.dim);
     slots_.erase(k);
-    if (active) region_.commitBegin();
   }
 
   /// Changes the parametrization of landmark `id` from `Conversion::From` to
@@ -1038,7 +867,7 @@ class BasicEkf {
     const LandmarkSlot s = typedSlot<From>(id, Conversion::kName);
     Mat<To::kDim, kRobotStateDim> J_x;
     Mat<To::kDim, From::kDim> J_l;
-    const Vec<From::kDim> from_mean = currentMean<From::kDim>(s.offset);
+    const Vec<From::kDim> from_mean = mean_.template segment<From::kDim>(s.offset);
     const Vec<To::kDim> new_mean = detail::throughRobotView<detail::ConversionRobotT<Conversion, Robot>, Robot>(
         robotMean(), J_x, [&](const auto& view, auto& J_view) { return conversion(view, from_mean, J_view, J_l); });
     replaceBlock<From, To>(s, new_mean, detail::onTangent<Robot>(J_x, robotMean()), J_l, Mat<To::kDim, To::kDim>::Zero(),
@@ -1067,7 +896,7 @@ class BasicEkf {
     Mat<To::kDim, kRobotStateDim> J_x;
     Mat<To::kDim, From::kDim> J_l;
     Mat<To::kDim, Z> J_z;
-    const Vec<From::kDim> from_mean = currentMean<From::kDim>(s.offset);
+    const Vec<From::kDim> from_mean = mean_.template segment<From::kDim>(s.offset);
     const Vec<To::kDim> new_mean = detail::throughRobotView<detail::ConversionRobotT<Conversion, Robot>, Robot>(
         robotMean(), J_x, [&](const auto& view, auto& J_view) { return conversion(view, from_mean, z, J_view, J_l, J_z); });
     if (!J_z.allFinite())
@@ -1286,127 +1115,6 @@ class BasicEkf {
     return x;
   }
 
-  // ---------------------------------------------------------------- compressed EKF
-
-  /// While alive, the covariance's dimension is `rows`, the compressed EKF's active part:
-  /// the kernels of predict and update then work on P_AA alone (A leads the state). With
-  /// compression off, rows = dim() and nothing changes.
-  class ActiveWindow {
-   public:
-    ActiveWindow(detail::LowerCovariance& cov, int rows) : cov_(cov), full_(cov.dim()) { cov.setDim(rows); }
-    ~ActiveWindow() { cov_.setDim(full_); }
-    ActiveWindow(const ActiveWindow&) = delete;
-    ActiveWindow& operator=(const ActiveWindow&) = delete;
-
-   private:
-    detail::LowerCovariance& cov_;
-    int full_;
-  };
-
-  /// True while the stored passive part is stale (local steps since the last global update).
-  bool pending() const { return compressed() && region_.steps() > 0; }
-
-  /// The landmarks of the active part (they lead `slots()`).
-  std::size_t activeSlotCount() const {
-    const auto& all = slots_.slots();
-    const int a = region_.activeDim();
-    return static_cast<std::size_t>(
-        std::partition_point(all.begin(), all.end(), [a](const LandmarkSlot& s) { return s.offset < a; }) -
-        all.begin());
-  }
-
-  /// The current mean of the L rows at `offset` (a landmark block): stored, or for a passive
-  /// block between global updates x_B0 + P_BA0 theta (detail::CompressedRegion).
-  template <int L>
-  Vec<L> currentMean(int offset) const {
-    Vec<L> out = mean_.template segment<L>(offset);
-    if (pending() && offset >= region_.activeDim()) {
-      const int a = region_.activeDim();
-      out += region_.passiveMeanCorrection(cov_.stored().block(offset, 0, L, a));
-    }
-    return out;
-  }
-
-  /// The current R x C block of P at (row, col), each of them the start of the robot's or a
-  /// landmark's block: stored, or corrected where it involves the passive part between global
-  /// updates (P_BA = P_BA0 phi^T, P_BB = P_BB0 - P_BA0 psi P_AB0). O(a^2) then.
-  template <int R, int C>
-  Mat<R, C> currentBlock(int row, int col) const {
-    const int a = region_.activeDim();
-    if (!pending() || (row < a && col < a)) return cov_.template block<R, C>(row, col);
-    if (row < a) return currentBlock<C, R>(col, row).transpose();
-    const auto V_row = cov_.stored().block(row, 0, R, a);
-    if (col < a) return V_row * region_.phi().middleRows(col, C).transpose();
-    const auto V_col = cov_.stored().block(col, 0, C, a);
-    return cov_.template block<R, C>(row, col) - region_.passivePassiveCorrection(V_row, V_col);
-  }
-
-  /// Compressed: if any landmark `idOf(e)` of `range` is passive, enters a new region that
-  /// holds them (a global update, the selector asked again). Returns true if the state was
-  /// reordered. Changes no estimate. Unknown ids are left to the caller's own checks.
-  template <typename Range, typename IdOf>
-  bool ensureActive(const Range& range, const IdOf& idOf) {
-    if (!compressed()) return false;
-    const int a = region_.activeDim();
-    bool any = false;
-    for (const auto& e : range) {
-      const LandmarkSlot* s = slots_.find(idOf(e));
-      if (s != nullptr && s->offset >= a) any = true;
-    }
-    if (!any) return false;
-    enterRegionHolding([&](Id id) {
-      for (const auto& e : range)
-        if (idOf(e) == id) return true;
-      return false;
-    });
-    return true;
-  }
-
-  /// A global update, then a new region: the landmarks that the selector or `forced(id)`
-  /// choose lead the state (in their present order), then the others. Everything that can
-  /// allocate comes before anything moves; the global update changes no estimate, so a
-  /// failure leaves the filter's estimates as they were.
-  template <typename Forced>
-  void enterRegionHolding(const Forced& forced) {
-    synchronize();
-    const int n = dim();
-    const auto& all = slots_.slots();
-    region_chosen_.assign(all.size(), 0);
-    int a = kRobotDim;
-    for (std::size_t k = 0; k < all.size(); ++k) {
-      if (forced(all[k].id) || region_select_(*this, all[k])) {
-        region_chosen_[k] = 1;
-        a += all[k].dim;
-      }
-    }
-    region_order_.clear();
-    region_order_.reserve(all.size());
-    for (int pass = 1; pass >= 0; --pass)
-      for (std::size_t k = 0; k < all.size(); ++k)
-        if (region_chosen_[k] == pass) region_order_.push_back(all[k]);
-    region_perm_.resize(static_cast<std::size_t>(n));
-    for (int i = 0; i < kRobotDim; ++i) region_perm_[static_cast<std::size_t>(i)] = i;
-    bool identity = true;
-    int row = kRobotDim;
-    for (const LandmarkSlot& s : region_order_) {
-      identity = identity && s.offset == row;
-      for (int i = 0; i < s.dim; ++i) region_perm_[static_cast<std::size_t>(row++)] = s.offset + i;
-    }
-    if (!identity && region_scratch_.size() < static_cast<Eigen::Index>(n) * n) region_scratch_.resize(static_cast<Eigen::Index>(n) * n);
-    region_.stageBegin(a);
-    // From here on nothing can fail.
-    if (!identity) {
-      for (Eigen::VectorXd* v : {&mean_, &first_, &ideal_}) {
-        for (int i = 0; i < n; ++i) region_scratch_[i] = (*v)[region_perm_[static_cast<std::size_t>(i)]];
-        v->head(n) = region_scratch_.head(n);
-      }
-      cov_.permute(region_perm_, region_scratch_.data());
-      slots_.reorder(region_order_, kRobotDim);
-      revision_ = detail::nextRevision();  // linearizations made before name the old rows
-    }
-    region_.commitBegin();
-  }
-
   // ---------------------------------------------------------------- reparametrization
 
   /// Replaces slot `s` (type From) by a block of type To with mean `new_mean`, carrying the
@@ -1425,11 +1133,6 @@ class BasicEkf {
     if constexpr (detail::HasDomain<To>::value) {
       if (const char* why = To::domainViolation(new_mean))
         fail(ErrorCode::kOutOfDomain, std::string(who) + ": landmark " + std::to_string(s.id) + ": " + why);
-    }
-    bool into_active = false;
-    if (compressed()) {
-      synchronize();  // the cross-covariances below read the whole state
-      into_active = s.offset < region_.activeDim();
     }
     const std::size_t k = slotIndex(s.id);
     // New block rows against every other column of the state, before anything moves.
@@ -1451,23 +1154,17 @@ class BasicEkf {
     Mat<Lt, Lt> P_new = J * P_joint * J.transpose() + added;
     P_new = (0.5 * (P_new + P_new.transpose())).eval();
     if (Lt > Lf) ensureCapacity(dim() - Lf + Lt);
-    // The new block goes to the end of the state, or (compressed) an active landmark's to the
-    // end of the active part, which it stays in.
-    const int off = into_active ? region_.activeDim() - Lf : rest;
-    const std::size_t index = into_active ? activeSlotCount() - 1 : static_cast<std::size_t>(slots_.size() - 1);
-    if (into_active) region_.stageBegin(region_.activeDim() - Lf + Lt);
     // From here on nothing can fail.
     eraseBlock(s.offset, Lf);
-    insertRows(off, Lt);
+    const int off = dim();
     mean_.template segment<Lt>(off) = new_mean;
     detail::normalize<To>(mean_.template segment<Lt>(off));
     first_.template segment<Lt>(off) = mean_.template segment<Lt>(off);  // a new first estimate
     ideal_.template segment<Lt>(off).setConstant(std::numeric_limits<double>::quiet_NaN());
-    cov_.stored().block(off, 0, Lt, off) = cross.leftCols(off);
-    cov_.stored().block(off + Lt, off, rest - off, Lt) = cross.rightCols(rest - off).transpose();
+    cov_.stored().block(off, 0, Lt, rest) = cross;
     cov_.stored().template block<Lt, Lt>(off, off) = P_new;
-    slots_.moveTo(k, LandmarkSlot{s.id, typeIndexOf<To>(), off, Lt}, index);
-    if (into_active) region_.commitBegin();
+    cov_.setDim(dim() + Lt);
+    slots_.moveToEnd(k, LandmarkSlot{s.id, typeIndexOf<To>(), off, Lt});
   }
 
   // ---------------------------------------------------------------- storage
@@ -1488,14 +1185,6 @@ class BasicEkf {
     first_.swap(first);
     ideal_.swap(ideal);
     cov_.adopt(cov);
-  }
-
-  /// Opens d rows and columns at `off` in the means and the covariance (zero covariance;
-  /// capacity for them reserved). Cannot fail.
-  void insertRows(int off, int d) {
-    const int tail = dim() - off;
-    for (Eigen::VectorXd* v : {&mean_, &first_, &ideal_}) std::copy_backward(v->data() + off, v->data() + off + tail, v->data() + off + tail + d);
-    cov_.insert(off, d);
   }
 
   /// Deletes rows and columns [off, off + d) from the means and the covariance.
@@ -1531,23 +1220,16 @@ class BasicEkf {
     toInvariantIncrement(delta);
     prepareGaugeTransport(delta);
     checkPosteriorDomain(delta);  // may throw; nothing of the filter is written yet
-    constexpr bool kJoseph = std::is_same_v<UpdateForm, JosephUpdate>;
-    if (compressed()) {
-      // The passive part's share of this update, into the region's workspaces (may allocate).
-      auto HphiT = region_.hphiTransposed(static_cast<int>(nu.size()));
-      applyHt(region_.phiTransposed(), HphiT);
-      region_.stageUpdate(llt.matrixL(), nu, gain, /*gain_is_k=*/kJoseph);
-    }
-    if constexpr (kJoseph) {
+    if constexpr (std::is_same_v<UpdateForm, JosephUpdate>) {
       const auto A = JosephUpdate::posterior<M>(P, gain, PHt, R, batch_, std::forward<ApplyHt>(applyHt));  // may allocate
       applyMeanIncrement(delta);
       P.template triangularView<Eigen::Lower>() = A;
     } else {
       (void)R;
+      (void)applyHt;
       applyMeanIncrement(delta);
       SymmetricUpdate::downdate<M>(P, gain, parallel_);
     }
-    if (compressed()) region_.commitUpdate();
     carryCovarianceToPosterior();
     carryCovarianceAlongGauge();
     normalizeAll();
@@ -1766,8 +1448,7 @@ class BasicEkf {
   void checkPosteriorDomain(const Delta& delta) const {
     constexpr bool any = (detail::HasDomain<Landmarks_>::value || ...);
     if constexpr (any) {
-      for (const LandmarkSlot& s : slots_.slots())
-        if (s.offset < delta.size()) checkSlotDomain(s, delta, std::index_sequence_for<Landmarks_...>());
+      for (const LandmarkSlot& s : slots_.slots()) checkSlotDomain(s, delta, std::index_sequence_for<Landmarks_...>());
     }
   }
 
@@ -1804,15 +1485,12 @@ class BasicEkf {
       const Mat<kRobotDim, kRobotDim> N = Robot::normalizationJacobian(robotMean());
       detail::normalize<Robot>(robot_mean_);
       cov_.template transformRobotBlock<kRobotDim>(N, RobotCovariance(N * robotCovariance() * N.transpose()));
-      if (compressed()) region_.template predictRobot<kRobotDim>(N);  // a linear map of the robot's rows
     } else {
       detail::normalize<Robot>(robot_mean_);
     }
     constexpr bool any = (detail::HasNormalize<Landmarks_>::value || ...);
     if constexpr (any) {
-      // Within the update's rows (the compressed EKF's active part; all of them otherwise).
-      for (const LandmarkSlot& s : slots_.slots())
-        if (s.offset < dim()) normalizeSlot(s, std::index_sequence_for<Landmarks_...>());
+      for (const LandmarkSlot& s : slots_.slots()) normalizeSlot(s, std::index_sequence_for<Landmarks_...>());
     }
   }
 
@@ -1856,16 +1534,6 @@ class BasicEkf {
   GaugeInverse gauge_inverse_choice_ = GaugeInverse::kRobot;
 
   detail::BatchWorkspace batch_;
-
-  // The compressed EKF (setCompression): the selector (empty: off), the region's
-  // accumulators, and the workspaces of entering a region (they only grow).
-  RegionSelector region_select_;
-  detail::CompressedRegion region_;
-  long global_updates_ = 0;
-  std::vector<char> region_chosen_;
-  std::vector<LandmarkSlot> region_order_;
-  std::vector<int> region_perm_;
-  Eigen::VectorXd region_scratch_;
 };
 
 /// The filter with the default covariance update (symmetric form, one triangle).

@@ -91,37 +91,6 @@ class LowerCovariance {
     n_ -= d;
   }
 
-  /// Opens d zero rows and columns before row `off`, moving the blocks from `off` on down
-  /// and right in place (backwards, so an overlap is safe). Needs capacity for n + d; cannot
-  /// fail.
-  void insert(int off, int d) {
-    // Columns left of the gap: their rows from `off` on move down by d.
-    for (int j = 0; j < off; ++j) {
-      double* col = m_.col(j).data();
-      std::copy_backward(col + off, col + n_, col + n_ + d);
-      std::fill(col + off, col + off + d, 0.0);
-    }
-    // Columns from `off` on move right by d and down by d, the last one first.
-    for (int j = n_ - 1; j >= off; --j) {
-      const double* src = m_.col(j).data() + j;
-      double* dst = m_.col(j + d).data() + j + d;
-      std::copy(src, src + (n_ - j), dst);
-    }
-    // The gap's own columns.
-    for (int j = off; j < off + d; ++j) std::fill(m_.col(j).data() + j, m_.col(j).data() + n_ + d, 0.0);
-    n_ += d;
-  }
-
-  /// P <- P(perm, perm): row and column i of the result are perm[i] of P (perm: a
-  /// permutation of 0..n-1). `scratch` must hold at least n x n doubles; allocates nothing.
-  template <typename Perm>
-  void permute(const Perm& perm, double* scratch) {
-    Eigen::Map<Eigen::MatrixXd> out(scratch, n_, n_);
-    for (int j = 0; j < n_; ++j)
-      for (int i = j; i < n_; ++i) out(i, j) = (*this)(perm[i], perm[j]);
-    for (int j = 0; j < n_; ++j) std::copy(&out(j, j), &out(0, j) + n_, m_.col(j).data() + j);
-  }
-
   /// P_rr <- P_rr_next (symmetrized), P_mr <- P_mr F^T: the robot block (the first R rows)
   /// and its cross-covariances through a robot-only Jacobian F (eq. 2.27). O(n).
   template <int R>
