@@ -35,9 +35,6 @@
 
 #include <Eigen/Core>
 #include <algorithm>
-#include <map>
-#include <memory>
-#include <utility>
 
 #include "common/build_context.hpp"
 #include "scenario/sylva_circle_slam.hpp"
@@ -48,8 +45,6 @@
 
 namespace {
 
-using sylva_bench::CircleWorld;
-using sylva_bench::CircleWorldConfig;
 using sylva_bench::SylvaStep;
 
 using PointFilter = sylva::Ekf<sylva::Odometry2D, sylva::Point2>;
@@ -57,43 +52,9 @@ using MixedFilter = sylva::Ekf<sylva::Odometry2D, sylva::Point2, sylva::Point3, 
 
 constexpr int kMaxTimedSteps = 40;
 
-/// The world of N landmarks, its steps in sylva's types and where lap 2 starts.
-struct World {
-  explicit World(int landmarks) : world(config(landmarks)), steps(sylva_bench::sylvaSteps(world)) {}
-  static CircleWorldConfig config(int landmarks) {
-    CircleWorldConfig c;
-    c.landmarks = landmarks;
-    return c;
-  }
-  CircleWorld world;
-  std::vector<SylvaStep> steps;
-};
-
-const World& worldOf(int landmarks) {
-  static std::map<int, std::unique_ptr<World>> cache;
-  auto& slot = cache[landmarks];
-  if (!slot) slot = std::make_unique<World>(landmarks);
-  return *slot;
-}
-
-/// The filter at the end of lap 1 (batched fusion while the map is built).
-template <typename Filter>
-const Filter& endOfLapOne(int landmarks) {
-  static std::map<int, std::unique_ptr<Filter>> cache;
-  auto& slot = cache[landmarks];
-  if (!slot) {
-    const World& w = worldOf(landmarks);
-    Filter ekf(w.world.initialPose(), sylva::Mat<3, 3>::Zero());
-    ekf.reserve(sylva::Point2::kDim * landmarks);
-    sylva_bench::StepScratch scratch;
-    const auto noise = w.world.odometryNoise();
-    for (int k = 0; k < w.world.lapBegin(1); ++k)
-      sylva_bench::runStep(ekf, w.steps[static_cast<std::size_t>(k)], noise, w.world.config().dt_s,
-                           sylva::Fusion::kBatched, scratch);
-    slot = std::make_unique<Filter>(std::move(ekf));
-  }
-  return *slot;
-}
+using sylva_bench::endOfLapOne;
+using sylva_bench::World;
+using sylva_bench::worldOf;
 
 template <typename Filter>
 void timeSteps(benchmark::State& state, sylva::Fusion fusion, sylva::Parallel* parallel = nullptr) {

@@ -45,6 +45,18 @@ def state_dim(landmarks):
     return ROBOT_DIM + LANDMARK_DIM * landmarks
 
 
+def single_runs(data):
+    """(family, numeric arguments, entry, CPU seconds) for every single run in a Google
+    Benchmark JSON (aggregates and errors left out)."""
+    for b in data.get("benchmarks", []):
+        if b.get("run_type") == "aggregate" or b.get("error_occurred"):
+            continue
+        parts = b.get("run_name", b["name"]).split("/")
+        family = parts[0][3:] if parts[0].startswith("BM_") else parts[0]
+        args = tuple(int(p) for p in parts[1:] if p.isdigit())
+        yield family, args, b, b["cpu_time"] * TO_SECONDS[b.get("time_unit", "ns")]
+
+
 def load(path, time_key):
     """Returns (context, samples, errors, obs) where samples[family][N] is a list of seconds."""
     with open(path, encoding="utf-8") as f:

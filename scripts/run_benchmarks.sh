@@ -13,11 +13,14 @@
 #      (single updates, update forms), with repetitions and random interleaving,
 #   4. the side-by-side run with MRPT (scripts/run_peer_benchmarks.sh, which installs Debian's
 #      libmrpt-dev; SKIP_PEERS=1 leaves it out, and the report then says MRPT was not run),
-#   5. the reports: scripts/step_report.py and scripts/bench_report.py.
+#   5. the reports: scripts/step_report.py and scripts/bench_report.py,
+#   6. the compressed EKF's page (scripts/compressed_report.sh, a baseline build of its own;
+#      SKIP_COMPRESSED=1 leaves it out).
 # Raw JSON stays in the build directories; only the reports are committed.
 #
 # Usage: bash scripts/run_benchmarks.sh [BUILD_DIR]
-# Environment: REPETITIONS (default 5), JOBS (build jobs, default 2), SKIP_BUILD_TIME, SKIP_PEERS.
+# Environment: REPETITIONS (default 5), JOBS (build jobs, default 2), SKIP_BUILD_TIME, SKIP_PEERS,
+# SKIP_COMPRESSED.
 # The whole run takes about 30 minutes on a 2-core machine (MRPT's dense filter at N = 2000
 # is a large part of it).
 set -euo pipefail
@@ -76,3 +79,6 @@ python3 "${root}/scripts/step_report.py" --step "${build_dir}/bench_slam_step.js
 python3 "${root}/scripts/bench_report.py" "${build_dir}/bench_ekf_update.json" \
   --out "${root}/docs/update-benchmarks.md" --svg "${root}/docs/update-benchmarks.svg" \
   --command "bash scripts/run_benchmarks.sh"
+if [[ "${SKIP_COMPRESSED:-0}" != 1 ]]; then
+  bash "${root}/scripts/compressed_report.sh"
+fi

@@ -27,12 +27,11 @@ from collections import defaultdict
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 # The exponent fit (log time against log n, n = 3 + 2N) and the formatting of times and
 # ratios are those of the update-form report.
-from bench_report import fit_exponent as slope, fmt_ratio as x, fmt_time as t  # noqa: E402
+from bench_report import fit_exponent as slope, fmt_ratio as x, fmt_time as t, single_runs  # noqa: E402
 
 SIZES = [50, 100, 200, 500, 1000, 2000]
 FIT = (500, 1000)
 TARGET_N = 1000
-SCALE = {"ns": 1e-9, "us": 1e-6, "ms": 1e-3, "s": 1.0}
 
 
 def load_step(path):
@@ -40,13 +39,9 @@ def load_step(path):
     data = json.load(open(path, encoding="utf-8"))
     samples = defaultdict(lambda: defaultdict(list))
     counters = defaultdict(dict)
-    for b in data["benchmarks"]:
-        if b.get("run_type") == "aggregate" or b.get("error_occurred"):
-            continue
-        parts = b["run_name"].split("/")
-        family = parts[0][3:]
-        n = int(parts[1]) if len(parts) > 1 and parts[1].isdigit() else 0
-        samples[family][n].append(b["cpu_time"] * SCALE[b["time_unit"]])
+    for family, args, b, seconds in single_runs(data):
+        n = args[0] if args else 0
+        samples[family][n].append(seconds)
         counters[family][n] = b
     medians = {f: {n: statistics.median(v) for n, v in by_n.items()} for f, by_n in samples.items()}
     return medians, counters, data.get("context", {})

@@ -17,6 +17,9 @@
 ///   3. add every landmark seen for the first time, in measurement order, from the updated
 ///      estimate.
 
+#include <map>
+#include <memory>
+#include <utility>
 #include <vector>
 
 #include "circle_world.hpp"
@@ -116,6 +119,45 @@ void runStep(Filter& ekf,
     for (const RangeBearingObservation& obs : scratch.known) ekf.update(model, obs.id, obs.z, obs.noise);
   }
   addNewLandmarks(ekf, scratch);
+}
+
+/// The world of N landmarks, its steps in sylva's types and where lap 2 starts.
+struct World {
+  explicit World(int landmarks) : world(config(landmarks)), steps(sylvaSteps(world)) {}
+  static CircleWorldConfig config(int landmarks) {
+    CircleWorldConfig c;
+    c.landmarks = landmarks;
+    return c;
+  }
+  CircleWorld world;
+  std::vector<SylvaStep> steps;
+};
+
+/// The world of N landmarks, built once per N.
+inline const World& worldOf(int landmarks) {
+  static std::map<int, std::unique_ptr<World>> cache;
+  auto& slot = cache[landmarks];
+  if (!slot) slot = std::make_unique<World>(landmarks);
+  return *slot;
+}
+
+/// The filter at the end of lap 1 (batched fusion while the map is built), built once per N
+/// and filter type.
+template <typename Filter>
+const Filter& endOfLapOne(int landmarks) {
+  static std::map<int, std::unique_ptr<Filter>> cache;
+  auto& slot = cache[landmarks];
+  if (!slot) {
+    const World& w = worldOf(landmarks);
+    Filter ekf(w.world.initialPose(), sylva::Mat<3, 3>::Zero());
+    ekf.reserve(sylva::Point2::kDim * landmarks);
+    StepScratch scratch;
+    const auto noise = w.world.odometryNoise();
+    for (int k = 0; k < w.world.lapBegin(1); ++k)
+      runStep(ekf, w.steps[static_cast<std::size_t>(k)], noise, w.world.config().dt_s, sylva::Fusion::kBatched, scratch);
+    slot = std::make_unique<Filter>(std::move(ekf));
+  }
+  return *slot;
 }
 
 }  // namespace sylva_bench

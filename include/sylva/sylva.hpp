@@ -11,6 +11,7 @@
 ///   sylva/diff.hpp           numerical differentiation (to check a model's Jacobians)
 ///   sylva/core.hpp           also the quaternion helpers of the 3D models
 ///   sylva/eval.hpp, sylva/sim.hpp, sylva/datasets.hpp
+///   sylva/filter/compression.hpp   the compressed EKF (Ekf::setCompression), for large maps
 // IWYU pragma: begin_exports
 #include "sylva/core/angles.hpp"
 #include "sylva/core/error.hpp"

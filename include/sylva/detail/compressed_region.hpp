@@ -3,7 +3,7 @@
 /// `detail::CompressedRegion`: the bookkeeping of the compressed EKF (Guivant and Nebot,
 /// "Optimization of the simultaneous localization and map-building algorithm for real time
 /// implementation", IEEE T-RA 17(3):242-257, 2001; cited by the multisensor thesis as [72]),
-/// the kernel under `BasicEkf::setCompression`.
+/// the kernel under `BasicEkf::setCompression` (filter/compression.hpp).
 ///
 /// The state splits into an active part A, its first a coordinates (the robot and the
 /// landmarks near it; the filter keeps them there), and a passive part B, the rest. While
@@ -53,18 +53,27 @@
 
 namespace sylva::detail {
 
-class CompressedRegion {
+/// A template only so that a translation unit that includes the filter but never compresses
+/// compiles none of this (its members are instantiated on first use); use `CompressedRegion`.
+template <typename = void>
+class BasicCompressedRegion {
  public:
   /// Enters a region whose active part is the first `a` coordinates: phi = I, psi = 0,
-  /// theta = 0. Allocates (if it throws, the region is as it was).
-  void begin(int a) {
-    Eigen::MatrixXd phi = Eigen::MatrixXd::Identity(a, a);
-    Eigen::MatrixXd psi = Eigen::MatrixXd::Zero(a, a);
-    Eigen::VectorXd theta = Eigen::VectorXd::Zero(a);
-    phi_.swap(phi);
-    psi_.swap(psi);
-    theta_.swap(theta);
+  /// theta = 0. `stageBegin` allocates and changes nothing; `commitBegin` cannot fail.
+  void stageBegin(int a) {
+    staged_phi_.setIdentity(a, a);
+    staged_psi_.setZero(a, a);
+    staged_theta_.setZero(a);
+  }
+  void commitBegin() {
+    phi_.swap(staged_phi_);
+    psi_.swap(staged_psi_);
+    theta_.swap(staged_theta_);
     steps_ = 0;
+  }
+  void begin(int a) {
+    stageBegin(a);
+    commitBegin();
   }
 
   /// The size a of the active part.
@@ -99,13 +108,16 @@ class CompressedRegion {
   }
 
   /// Computes an update's changes from (H_A phi)^T (`hphiTransposed`, filled), the Cholesky
-  /// factor L of S, the innovation nu and W = P_AA H_A^T L^-T (a x m); `commitUpdate` applies
-  /// them. Workspaces only: the region is unchanged.
+  /// factor L of S, the innovation nu and the active block's gain: W = P_AA H_A^T L^-T (a x m,
+  /// the symmetric form's) or, with `gain_is_k`, K_A = P_AA H_A^T S^-1 (the Joseph form's;
+  /// K_A H_A phi = W G). `commitUpdate` applies them. Workspaces only: the region is unchanged.
   template <typename LowerFactor, typename Nu, typename Gain>
-  void stageUpdate(const LowerFactor& L, const Nu& nu, const Gain& W) {
+  void stageUpdate(const LowerFactor& L, const Nu& nu, const Gain& gain, bool gain_is_k = false) {
     const int a = activeDim();
     const int m = static_cast<int>(nu.size());
     Eigen::Map<Eigen::MatrixXd> Gt(hphi_t_.data(), a, m);
+    auto d_phi = Eigen::Map<Eigen::MatrixXd>(grown(d_phi_, static_cast<Eigen::Index>(a) * a), a, a);
+    if (gain_is_k) d_phi.noalias() = gain * Gt.transpose();  // K_A (H_A phi)
     // G = L^-1 (H_A phi), kept transposed: G^T = (H_A phi)^T L^-T.
     L.transpose().template solveInPlace<Eigen::OnTheRight>(Gt);
     auto v = Eigen::Map<Eigen::VectorXd>(grown(v_, m), m);
@@ -113,10 +125,9 @@ class CompressedRegion {
     L.solveInPlace(v);
     auto d_theta = Eigen::Map<Eigen::VectorXd>(grown(d_theta_, a), a);
     auto d_psi = Eigen::Map<Eigen::MatrixXd>(grown(d_psi_, static_cast<Eigen::Index>(a) * a), a, a);
-    auto d_phi = Eigen::Map<Eigen::MatrixXd>(grown(d_phi_, static_cast<Eigen::Index>(a) * a), a, a);
     d_theta.noalias() = Gt * v;
     d_psi.noalias() = Gt * Gt.transpose();
-    d_phi.noalias() = W * Gt.transpose();
+    if (!gain_is_k) d_phi.noalias() = gain * Gt.transpose();  // W G
   }
   /// Applies the staged update. Allocates nothing.
   void commitUpdate() {
@@ -227,5 +238,7 @@ class CompressedRegion {
     return buffer.data();
   }
 };
+
+using CompressedRegion = BasicCompressedRegion<>;
 
 }  // namespace sylva::detail

@@ -21,6 +21,10 @@
 ///   remove             O(n^2)    rows and columns are moved up
 ///   reparametrize      O(n^2)    covariance carried through the conversion's Jacobian
 ///
+/// The compressed EKF (`setCompression`; Guivant and Nebot 2001) updates only an active part
+/// of the state between global updates: predict O(a), update O(m a^2), a global update
+/// O(n^2 a) when the active part changes. See docs/filter.md ("Compressed EKF").
+///
 /// Storage: the covariance lives in a capacity x capacity column-major matrix of which the
 /// top-left n x n corner is in use and only its lower triangle is authoritative. Nothing is
 /// allocated by `predict` or `update` once the workspace has seen the largest state.
@@ -33,6 +37,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <iterator>
 #include <limits>
 #include <sstream>
@@ -50,6 +55,7 @@
 #include "sylva/core/types.hpp"
 #include "sylva/detail/model_traits.hpp"
 #include "sylva/diff/evaluate.hpp"
+#include "sylva/filter/compression_hooks.hpp"
 #include "sylva/filter/linearization.hpp"
 #include "sylva/filter/lower_covariance.hpp"
 #include "sylva/filter/slot_table.hpp"
@@ -191,6 +197,7 @@ class BatchLinearizations {
   Eigen::Map<Mat<M, R>> J_z_x(int a) const { return Eigen::Map<Mat<M, R>>(data_ + a * kStride); }
   Eigen::Map<Mat<M, L>> J_z_l(int a) const { return Eigen::Map<Mat<M, L>>(data_ + a * kStride + M * R); }
   int offset(int a) const { return offsets_[static_cast<std::size_t>(a)]; }
+  void setOffset(int a, int offset) { offsets_[static_cast<std::size_t>(a)] = offset; }
 
  private:
   std::vector<int>& offsets_;
@@ -312,6 +319,11 @@ class BasicEkf {
                          "TreeXYZR, InverseDepthRadius); ") +
                  typesNamed());
     }
+    if (compressed() && (point == LinearizationPoint::kInvariant || point == LinearizationPoint::kObservabilityConstrained))
+      fail(ErrorCode::kInvalidArgument,
+           "Ekf::setLinearizationPoint: the invariant and observability-constrained updates transform the whole "
+           "covariance after each update, which the compressed EKF does not keep current; turn compression off "
+           "first (setCompression(nullptr))");
     linearization_ = point;
   }
   LinearizationPoint linearizationPoint() const { return linearization_; }
@@ -340,6 +352,111 @@ class BasicEkf {
   /// core/thread_pool.hpp.
   void setParallel(Parallel* parallel) { parallel_ = parallel; }
   Parallel* parallel() const { return parallel_; }
+
+  // ---------------------------------------------------------------- compressed EKF
+
+  /// Chooses the landmarks of the compressed EKF's active part when a region is entered.
+  using RegionSelector = std::function<bool(const BasicEkf&, const LandmarkSlot&)>;
+
+  /// Turns the compressed EKF on (Guivant and Nebot 2001), with `select` choosing the
+  /// landmarks of the active part, or off (nullptr: a global update, then the plain filter).
+  ///
+  /// The active part A is the robot, the landmarks `select` chose when the region was
+  /// entered, and every landmark added since. Predictions and updates that see only A cost
+  /// O(a) and O(m a^2) instead of O(n) and O(n^2 m); the rest of the state, B, is carried as
+  /// accumulated products (detail::CompressedRegion) and brought up to date by a global
+  /// update, O(n^2 a). The filter enters a new region (a global update, `select` asked
+  /// again, the state reordered so that A leads it; O(n^2)) when:
+  ///   - an update observes a landmark of B (it joins the new region whatever `select` says),
+  ///   - the caller calls `enterRegion()` (e.g. when the robot has moved on),
+  ///   - a landmark of A is reparametrized.
+  /// Everything read through the public accessors is up to date: the landmark accessors,
+  /// `mean()` and `covariance()` correct what B holds on the fly (O(a^2) per block, O(n^2 a)
+  /// for the whole covariance), and `covarianceView()` refuses (kInvalidArgument) until
+  /// `synchronize()`. Estimates equal the plain filter's up to round-off.
+  ///
+  /// Refused (kInvalidArgument, the filter unchanged) with LinearizationPoint::kInvariant or
+  /// kObservabilityConstrained, whose transports change the whole covariance at every update.
+  /// The region is entered at once: `select` is asked about every landmark now. Needs
+  /// `#include <sylva/filter/compression.hpp>`, which a program that never compresses does
+  /// not compile.
+  void setCompression(RegionSelector select) {
+    static_assert(detail::IsDefined<detail::Compression<BasicEkf>>::value,
+                  "Ekf::setCompression needs #include <sylva/filter/compression.hpp>");
+    if (!select) {
+      synchronize();
+      compression_.reset();
+      return;
+    }
+    if (linearization_ == LinearizationPoint::kInvariant || linearization_ == LinearizationPoint::kObservabilityConstrained)
+      fail(ErrorCode::kInvalidArgument,
+           "Ekf::setCompression: the compressed EKF cannot run the invariant or observability-constrained "
+           "update (they transform the whole covariance after each update)");
+    synchronize();
+    // The new region is entered before it replaces the old one: if that fails, the filter
+    // keeps its old region (the global update above changed no estimate).
+    detail::ClonePtr<detail::CompressionHooks<BasicEkf>> next;
+    next.reset(new detail::Compression<BasicEkf>(std::move(select)));
+    next->enterRegion(*this, nullptr, 0);
+    compression_ = std::move(next);
+  }
+  bool compressed() const { return static_cast<bool>(compression_); }
+
+  /// The compressed EKF's active part: its rows (the robot and its landmarks lead the state),
+  /// dim() when compression is off.
+  int activeDim() const { return compressed() ? compression_->activeDim() : dim(); }
+  /// Global updates so far (for reports; 0 when compression is off).
+  long globalUpdates() const { return compressed() ? compression_->globalUpdates() : 0; }
+
+  /// Brings the whole state up to date (the compressed EKF's global update, O(n^2 a)); a
+  /// no-op when compression is off or nothing happened since the last one. Changes no
+  /// estimate.
+  void synchronize() {
+    if (compressed()) compression_->synchronize(*this);
+  }
+
+  /// Enters a new region: a global update, then the landmarks the selector chooses now become
+  /// the active part (the state is reordered so that they lead it). No-op when compression is
+  /// off. Changes no estimate.
+  void enterRegion() {
+    if (compressed()) compression_->enterRegion(*this, nullptr, 0);
+  }
+
+  /// A selector for `setCompression`: the landmarks within `radius_m` of a point `ahead_m`
+  /// in front of the robot (along its heading; 0: the robot's own position), for a robot
+  /// that declares kPlanarPosition (every Pose2D robot; a point ahead needs kPlanarHeading
+  /// too). A robot that moves forward stays in a region centred ahead of it about twice as
+  /// long as in one centred on it: with a sensor of range s, ahead_m = radius_m - s lets it
+  /// travel 2 (radius_m - s) before a landmark outside the region comes into view. Landmark
+  /// types without a planar position (kPlanarPosition) are always active.
+  static RegionSelector withinRadius(double radius_m, double ahead_m = 0.0) {
+    static_assert(detail::HasPlanarPosition<Robot>::value,
+                  "withinRadius needs a robot that declares kPlanarPosition (every Pose2D robot)");
+    if (!(radius_m > 0.0) || !std::isfinite(radius_m) || !std::isfinite(ahead_m))
+      fail(ErrorCode::kInvalidArgument, "Ekf::withinRadius: the radius must be positive and finite, and the "
+                                        "distance ahead finite");
+    if constexpr (!detail::HasPlanarHeading<Robot>::value) {
+      if (ahead_m != 0.0)
+        fail(ErrorCode::kInvalidArgument, "Ekf::withinRadius: a centre ahead of the robot needs a robot that "
+                                          "declares kPlanarHeading");
+    }
+    return [radius_m, ahead_m](const BasicEkf& ekf, const LandmarkSlot& slot) {
+      Vec<2> centre = ekf.robotMean().template segment<2>(Robot::kPlanarPosition);
+      if constexpr (detail::HasPlanarHeading<Robot>::value) {
+        const double heading = ekf.robotMean()[Robot::kPlanarHeading];
+        centre += ahead_m * Vec<2>(std::cos(heading), std::sin(heading));
+      }
+      return ekf.visit(slot.id, [&](auto tag) {
+        using L = typename decltype(tag)::type;
+        if constexpr (detail::HasPlanarPosition<L>::value) {
+          const Vec<2> p = ekf.template landmarkMean<L>(slot.id).template segment<2>(L::kPlanarPosition);
+          return (p - centre).squaredNorm() <= radius_m * radius_m;
+        } else {
+          return true;
+        }
+      });
+    };
+  }
 
   /// The robot's true state, for LinearizationPoint::kIdeal: predict linearizes the motion
   /// about it, and updates the measurement models. Each predict uses it up, so hand
@@ -407,21 +524,21 @@ class BasicEkf {
   template <typename Landmark>
   Vec<Landmark::kDim> landmarkMean(Id id) const {
     const LandmarkSlot& s = typedSlot<Landmark>(id, "landmarkMean");
-    return mean_.template segment<Landmark::kDim>(s.offset);
+    return currentMean<Landmark::kDim>(s.offset);
   }
 
   /// Marginal covariance of landmark `id`.
   template <typename Landmark>
   Mat<Landmark::kDim, Landmark::kDim> landmarkCovariance(Id id) const {
     const LandmarkSlot& s = typedSlot<Landmark>(id, "landmarkCovariance");
-    return cov_.template block<Landmark::kDim, Landmark::kDim>(s.offset, s.offset);
+    return currentBlock<Landmark::kDim, Landmark::kDim>(s.offset, s.offset);
   }
 
   /// Cross-covariance between the robot and landmark `id`.
   template <typename Landmark>
   Mat<kRobotDim, Landmark::kDim> robotLandmarkCovariance(Id id) const {
     const LandmarkSlot& s = typedSlot<Landmark>(id, "robotLandmarkCovariance");
-    return cov_.template block<kRobotDim, Landmark::kDim>(0, s.offset);
+    return currentBlock<kRobotDim, Landmark::kDim>(0, s.offset);
   }
 
   /// Copy of the whole mean: the robot's state, then the landmark blocks. Its length is n
@@ -430,6 +547,10 @@ class BasicEkf {
   Eigen::VectorXd mean() const {
     Eigen::VectorXd out(dim() - kRobotDim + kRobotStateDim);
     out << robot_mean_, mean_.segment(kRobotDim, dim() - kRobotDim);
+    if (pending()) {
+      const int a = compression_->activeDim();
+      compression_->correctMean(*this, a, dim() - a, out.data() + out.size() - (dim() - a));
+    }
     return out;
   }
 
@@ -437,12 +558,21 @@ class BasicEkf {
   /// in products (`ekf.covarianceView() * v`) or assign it to a dense matrix. Its entries
   /// above the diagonal are not stored: read single entries from the lower triangle, or
   /// through the typed blocks below. Valid until a landmark is added, removed or
-  /// reparametrized (the storage may move).
-  auto covarianceView() const { return cov_.inUse().template selfadjointView<Eigen::Lower>(); }
+  /// reparametrized (the storage may move). With the compressed EKF, call `synchronize()`
+  /// first: the stored passive part is refused as stale (kInvalidArgument).
+  auto covarianceView() const {
+    if (pending())
+      fail(ErrorCode::kInvalidArgument,
+           "Ekf::covarianceView: the compressed EKF's stored covariance is stale outside its active part; call "
+           "synchronize() first (or read covariance(), which corrects it)");
+    return cov_.inUse().template selfadjointView<Eigen::Lower>();
+  }
 
-  /// Copy of the whole covariance (n x n, both triangles filled).
+  /// Copy of the whole covariance (n x n, both triangles filled). O(n^2 a) with the
+  /// compressed EKF between global updates.
   Eigen::MatrixXd covariance() const {
     Eigen::MatrixXd full = cov_.inUse().template selfadjointView<Eigen::Lower>();
+    if (pending()) compression_->correctCovariance(*this, full);
     return full;
   }
 
@@ -507,7 +637,9 @@ class BasicEkf {
     robot_mean_ = next;
     robot_first_ = next;
     robot_ideal_.setConstant(std::numeric_limits<double>::quiet_NaN());
-    cov_.template transformRobotBlock<kRobotDim>(F, P_rr_next);  // eq. 2.27
+    const ActiveWindow window(cov_, activeDim());
+    cov_.template transformRobotBlock<kRobotDim>(F, P_rr_next);  // eq. 2.27 (on A: compressed)
+    if (compressed()) compression_->predictRobot(F.data());
   }
 
   // ---------------------------------------------------------------- update
@@ -530,6 +662,8 @@ class BasicEkf {
     constexpr int L = Model::Landmark::kDim;
     if (!z.allFinite()) fail(ErrorCode::kNonFinite, nameOf<Model>() + ": measurement is not finite");
     checkMeasurement(model, z);
+    const Id ids[] = {id};
+    ensureActive(ids, [](Id i) { return i; });
     const Linearization<Model, kRobotDim> lin = linearize(model, id);
     Vec<M> nu = detail::residual(model, z, lin.z_hat);
     if (!nu.allFinite()) fail(ErrorCode::kNonFinite, nameOf<Model>() + ": innovation is not finite");
@@ -537,6 +671,7 @@ class BasicEkf {
     // The linearization the gain uses: the prior's, or the last iterate's.
     detail::BatchLinearizations<M, kRobotDim, L> lins(batch_.lins, batch_.offsets, 1);
     lins.store(0, lin);
+    const ActiveWindow window(cov_, activeDim());
     auto PHt = workspaceMatrix<M>(0);
     Mat<M, M> S;
     Eigen::LLT<Mat<M, M>> llt;
@@ -559,7 +694,7 @@ class BasicEkf {
       iterateBatch(model, one, lins, nu, PHt, llt, [&] { formInnovationCovariance(" at an iterate"); });
     }
     // From here on only the posterior domain check can fail, before anything is written.
-    applyGain<M>(PHt, llt, nu, noise.covariance(), [&](const auto& A, auto&& out) {
+    applyGain<M>(PHt, llt, nu, noise.covariance(), updateBlocks(1, M, L), [&](const auto& A, auto&& out) {
       out.noalias() = A.template middleCols<kRobotDim>(0) * lins.J_z_x(0).transpose();
       out.noalias() += A.template middleCols<L>(lins.offset(0)) * lins.J_z_l(0).transpose();
     });
@@ -625,13 +760,23 @@ class BasicEkf {
         fail(ErrorCode::kNonFinite, nameOf<Model>() + ": measurement " + std::to_string(i) +
                                         " of the batch is not finite");
       checkMeasurement(model, obs.z, "batch", i);
-      const Linearization<Model, kRobotDim> lin = given ? checkedLinearization(given[i], obs.id, i) : linearize(model, obs.id);
+      if (given) checkedLinearization(given[i], obs.id, i);
+      ++i;
+    }
+    // Compressed: a landmark of the passive part makes the filter enter a region that holds
+    // it (the given linearizations stay valid: no estimate changes, only where blocks lie).
+    const bool moved = ensureActive(observations, [](const Observation<Model>& obs) { return obs.id; });
+    i = 0;
+    for (const Observation<Model>& obs : observations) {
+      const Linearization<Model, kRobotDim> lin = given ? given[i] : linearize(model, obs.id);
       lins.store(i, lin);
+      if (moved && given) lins.setOffset(i, slots_[slotIndex(obs.id)].offset);
       nu.template segment<M>(i * M) = detail::residual(model, obs.z, lin.z_hat);
       ++i;
     }
     if (!nu.allFinite()) fail(ErrorCode::kNonFinite, nameOf<Model>() + ": innovation is not finite");
 
+    const ActiveWindow window(cov_, activeDim());
     auto PHt = workspaceMatrix<Eigen::Dynamic>(total);
     auto S = batch_.matrix(detail::BatchWorkspace::kInnovationCovariance, total);
     // P H^T and S = H P H^T + R (lower triangle, block (a, b) for b <= a, from the columns of
@@ -687,7 +832,7 @@ class BasicEkf {
                nameOf<Model>() + ": batched innovation covariance is not positive definite at an iterate");
       });
     }
-    applyGain<Eigen::Dynamic>(PHt, llt, nu, R, [&](const auto& A, auto&& out) {
+    applyGain<Eigen::Dynamic>(PHt, llt, nu, R, updateBlocks(k, M, L), [&](const auto& A, auto&& out) {
       for (int a = 0; a < k; ++a) {
         out.middleCols(a * M, M).noalias() = A.template middleCols<kRobotDim>(0) * lins.J_z_x(a).transpose();
         out.middleCols(a * M, M).noalias() += A.template middleCols<L>(lins.offset(a)) * lins.J_z_l(a).transpose();
@@ -723,7 +868,7 @@ class BasicEkf {
     Linearization<Model, kRobotDim> lin;
     lin.landmark_offset = s.offset;
     lin.revision = revision_;
-    const Vec<L> landmark = mean_.template segment<L>(s.offset);
+    const Vec<L> landmark = currentMean<L>(s.offset);
     if (linearization_ == LinearizationPoint::kFirstEstimates) {
       lin.z_hat = detail::evaluateOn<Robot>(model, robotMean(), landmark, {}, {});
       evaluateWithJacobians(model, robot_first_, Vec<L>(first_.template segment<L>(s.offset)), lin);
@@ -751,6 +896,16 @@ class BasicEkf {
   template <typename ModelA, typename ModelB>
   Mat<ModelA::kDim, ModelB::kDim> crossCovariance(const Linearization<ModelA, kRobotDim>& a,
                                                    const Linearization<ModelB, kRobotDim>& b) const {
+    if (pending() && std::max(a.landmark_offset, b.landmark_offset) >= compression_->activeDim()) {
+      constexpr int La = ModelA::Landmark::kDim;
+      constexpr int Lb = ModelB::Landmark::kDim;
+      const int oa = a.landmark_offset;
+      const int ob = b.landmark_offset;
+      return a.J_z_x * (currentBlock<kRobotDim, kRobotDim>(0, 0) * b.J_z_x.transpose() +
+                        currentBlock<kRobotDim, Lb>(0, ob) * b.J_z_l.transpose()) +
+             a.J_z_l * (currentBlock<La, kRobotDim>(oa, 0) * b.J_z_x.transpose() +
+                        currentBlock<La, Lb>(oa, ob) * b.J_z_l.transpose());
+    }
     return cov_.template crossCovariance<kRobotDim>(a.J_z_x, a.J_z_l, a.landmark_offset, b.J_z_x, b.J_z_l,
                                                     b.landmark_offset);
   }
@@ -781,7 +936,9 @@ class BasicEkf {
 
   /// Adds landmark `id` from its first observation `z` through the inverse model
   /// (augmentation, eq. 2.33-2.39): the new block's cross-covariances are J_l_x P_r* and its
-  /// covariance J_l_x P_rr J_l_x^T + J_l_z R J_l_z^T. O(n).
+  /// covariance J_l_x P_rr J_l_x^T + J_l_z R J_l_z^T. O(n). With the compressed EKF the new
+  /// landmark joins the active part, at its end: O(a) arithmetic, and the passive part's
+  /// storage moves down by its rows (O(n^2) memory moves, no flops).
   template <typename InverseModel>
   void add(Id id,
            const InverseModel& inverse,
@@ -815,8 +972,10 @@ class BasicEkf {
     Mat<L, L> P_ll = J_P_rr * J_l_x.transpose() + J_l_z * noise.covariance() * J_l_z.transpose();
     P_ll = (0.5 * (P_ll + P_ll.transpose())).eval();
     // The new block's rows against the landmarks, J_l_x P_rm, computed before anything is
-    // written: the product (and its buffer) may allocate for a large state.
-    const int m = dim() - kRobotDim;
+    // written: the product (and its buffer) may allocate for a large state. Compressed: the
+    // active landmarks only (its cross-covariance with the passive part is carried by the
+    // region's accumulators, and stored as zero).
+    const int m = activeDim() - kRobotDim;
     const Eigen::Matrix<double, L, Eigen::Dynamic> J_P_rm = J_l_x * cov_.stored().block(kRobotDim, 0, m, kRobotDim).transpose();
     if (!P_ll.allFinite() || !J_P_rr.allFinite() || !J_P_rm.allFinite())
       fail(ErrorCode::kNonFinite, std::string(InverseModel::kName) + ": the new landmark's covariance is not finite "
@@ -826,8 +985,17 @@ class BasicEkf {
     // index (the last thing that can fail).
     slots_.reserveOne();
     ensureCapacity(dim() + L);
-    const int off = dim();
-    slots_.append(LandmarkSlot{id, typeIndexOf<Landmark>(), off, L});
+    const int off = activeDim();
+    if (compressed()) {
+      compression_->stageExtend(J_l_x.data(), L);
+      slots_.insertAt(activeSlotCount(), LandmarkSlot{id, typeIndexOf<Landmark>(), off, L});
+      // From here on nothing can fail.
+      insertRows(off, L);
+      compression_->commitExtend();
+    } else {
+      slots_.append(LandmarkSlot{id, typeIndexOf<Landmark>(), off, L});
+      cov_.setDim(dim() + L);
+    }
     // From here on nothing can fail.
     mean_.template segment<L>(off) = l;
     detail::normalize<Landmark>(mean_.template segment<L>(off));
@@ -837,16 +1005,24 @@ class BasicEkf {
     cov_.stored().template block<L, kRobotDim>(off, 0) = J_P_rr;
     if (m > 0) cov_.stored().block(off, kRobotDim, L, m) = J_P_rm;
     cov_.stored().template block<L, L>(off, off) = P_ll;
-    cov_.setDim(dim() + L);
   }
 
-  /// Removes landmark `id`: its rows and columns leave the state. O(n^2) (moves).
+  /// Removes landmark `id`: its rows and columns leave the state. O(n^2) (moves). With the
+  /// compressed EKF, removing an active landmark costs a global update first.
   void remove(Id id) {
     revision_ = detail::nextRevision();
     const std::size_t k = slotIndex(id);
     const LandmarkSlot s = slots_[k];
+    const bool active = compressed() && s.offset < compression_->activeDim();
+    if (active) {
+      // The passive part's accumulators refer to this block's stored cross-covariances.
+      synchronize();
+      compression_->stageBegin(compression_->activeDim() - s.dim);
+    }
+    // From here on nothing can fail.
     eraseBlock(s.offset, s.dim);
     slots_.erase(k);
+    if (active) compression_->commitBegin();
   }
 
   /// Changes the parametrization of landmark `id` from `Conversion::From` to
@@ -867,7 +1043,7 @@ class BasicEkf {
     const LandmarkSlot s = typedSlot<From>(id, Conversion::kName);
     Mat<To::kDim, kRobotStateDim> J_x;
     Mat<To::kDim, From::kDim> J_l;
-    const Vec<From::kDim> from_mean = mean_.template segment<From::kDim>(s.offset);
+    const Vec<From::kDim> from_mean = currentMean<From::kDim>(s.offset);
     const Vec<To::kDim> new_mean = detail::throughRobotView<detail::ConversionRobotT<Conversion, Robot>, Robot>(
         robotMean(), J_x, [&](const auto& view, auto& J_view) { return conversion(view, from_mean, J_view, J_l); });
     replaceBlock<From, To>(s, new_mean, detail::onTangent<Robot>(J_x, robotMean()), J_l, Mat<To::kDim, To::kDim>::Zero(),
@@ -896,7 +1072,7 @@ class BasicEkf {
     Mat<To::kDim, kRobotStateDim> J_x;
     Mat<To::kDim, From::kDim> J_l;
     Mat<To::kDim, Z> J_z;
-    const Vec<From::kDim> from_mean = mean_.template segment<From::kDim>(s.offset);
+    const Vec<From::kDim> from_mean = currentMean<From::kDim>(s.offset);
     const Vec<To::kDim> new_mean = detail::throughRobotView<detail::ConversionRobotT<Conversion, Robot>, Robot>(
         robotMean(), J_x, [&](const auto& view, auto& J_view) { return conversion(view, from_mean, z, J_view, J_l, J_z); });
     if (!J_z.allFinite())
@@ -1115,6 +1291,75 @@ class BasicEkf {
     return x;
   }
 
+  // ---------------------------------------------------------------- compressed EKF
+
+  /// While alive, the covariance's dimension is `rows`, the compressed EKF's active part:
+  /// the kernels of predict and update then work on P_AA alone (A leads the state). With
+  /// compression off, rows = dim() and nothing changes.
+  class ActiveWindow {
+   public:
+    ActiveWindow(detail::LowerCovariance& cov, int rows) : cov_(cov), full_(cov.dim()) { cov.setDim(rows); }
+    ~ActiveWindow() { cov_.setDim(full_); }
+    ActiveWindow(const ActiveWindow&) = delete;
+    ActiveWindow& operator=(const ActiveWindow&) = delete;
+
+   private:
+    detail::LowerCovariance& cov_;
+    int full_;
+  };
+
+  /// True while the stored passive part is stale (local steps since the last global update).
+  bool pending() const { return compressed() && compression_->steps() > 0; }
+
+  /// The landmarks of the active part (they lead `slots()`).
+  std::size_t activeSlotCount() const {
+    const auto& all = slots_.slots();
+    const int a = activeDim();
+    return static_cast<std::size_t>(
+        std::partition_point(all.begin(), all.end(), [a](const LandmarkSlot& s) { return s.offset < a; }) -
+        all.begin());
+  }
+
+  /// The current mean of the L rows at `offset` (a landmark block): stored, or for a passive
+  /// block between global updates corrected by the compressed EKF.
+  template <int L>
+  Vec<L> currentMean(int offset) const {
+    Vec<L> out = mean_.template segment<L>(offset);
+    if (pending() && offset >= compression_->activeDim()) compression_->correctMean(*this, offset, L, out.data());
+    return out;
+  }
+
+  /// The current R x C block of P at (row, col), each of them the start of the robot's or a
+  /// landmark's block: stored, or corrected by the compressed EKF where it involves the
+  /// passive part between global updates (O(a^2) then).
+  template <int R, int C>
+  Mat<R, C> currentBlock(int row, int col) const {
+    if (!pending() || std::max(row, col) < compression_->activeDim()) return cov_.template block<R, C>(row, col);
+    Mat<R, C> out;
+    compression_->currentBlock(*this, row, col, R, C, out.data());
+    return out;
+  }
+
+  /// Compressed: if any landmark `idOf(e)` of `range` is passive, enters a new region that
+  /// holds them (a global update, the selector asked again). Returns true if the state was
+  /// reordered. Changes no estimate. Unknown ids are left to the caller's own checks.
+  template <typename Range, typename IdOf>
+  bool ensureActive(const Range& range, const IdOf& idOf) {
+    if (!compressed()) return false;
+    const int a = compression_->activeDim();
+    bool any = false;
+    for (const auto& e : range) {
+      const LandmarkSlot* s = slots_.find(idOf(e));
+      if (s != nullptr && s->offset >= a) any = true;
+    }
+    if (!any) return false;
+    std::vector<Id> forced;
+    forced.reserve(std::size(range));
+    for (const auto& e : range) forced.push_back(idOf(e));
+    compression_->enterRegion(*this, forced.data(), forced.size());
+    return true;
+  }
+
   // ---------------------------------------------------------------- reparametrization
 
   /// Replaces slot `s` (type From) by a block of type To with mean `new_mean`, carrying the
@@ -1133,6 +1378,11 @@ class BasicEkf {
     if constexpr (detail::HasDomain<To>::value) {
       if (const char* why = To::domainViolation(new_mean))
         fail(ErrorCode::kOutOfDomain, std::string(who) + ": landmark " + std::to_string(s.id) + ": " + why);
+    }
+    bool into_active = false;
+    if (compressed()) {
+      synchronize();  // the cross-covariances below read the whole state
+      into_active = s.offset < compression_->activeDim();
     }
     const std::size_t k = slotIndex(s.id);
     // New block rows against every other column of the state, before anything moves.
@@ -1154,17 +1404,23 @@ class BasicEkf {
     Mat<Lt, Lt> P_new = J * P_joint * J.transpose() + added;
     P_new = (0.5 * (P_new + P_new.transpose())).eval();
     if (Lt > Lf) ensureCapacity(dim() - Lf + Lt);
+    // The new block goes to the end of the state, or (compressed) an active landmark's to the
+    // end of the active part, which it stays in.
+    const int off = into_active ? compression_->activeDim() - Lf : rest;
+    const std::size_t index = into_active ? activeSlotCount() - 1 : static_cast<std::size_t>(slots_.size() - 1);
+    if (into_active) compression_->stageBegin(compression_->activeDim() - Lf + Lt);
     // From here on nothing can fail.
     eraseBlock(s.offset, Lf);
-    const int off = dim();
+    insertRows(off, Lt);
     mean_.template segment<Lt>(off) = new_mean;
     detail::normalize<To>(mean_.template segment<Lt>(off));
     first_.template segment<Lt>(off) = mean_.template segment<Lt>(off);  // a new first estimate
     ideal_.template segment<Lt>(off).setConstant(std::numeric_limits<double>::quiet_NaN());
-    cov_.stored().block(off, 0, Lt, rest) = cross;
+    cov_.stored().block(off, 0, Lt, off) = cross.leftCols(off);
+    cov_.stored().block(off + Lt, off, rest - off, Lt) = cross.rightCols(rest - off).transpose();
     cov_.stored().template block<Lt, Lt>(off, off) = P_new;
-    cov_.setDim(dim() + Lt);
-    slots_.moveToEnd(k, LandmarkSlot{s.id, typeIndexOf<To>(), off, Lt});
+    slots_.moveTo(k, LandmarkSlot{s.id, typeIndexOf<To>(), off, Lt}, index);
+    if (into_active) compression_->commitBegin();
   }
 
   // ---------------------------------------------------------------- storage
@@ -1185,6 +1441,14 @@ class BasicEkf {
     first_.swap(first);
     ideal_.swap(ideal);
     cov_.adopt(cov);
+  }
+
+  /// Opens d rows and columns at `off` in the means and the covariance (zero covariance;
+  /// capacity for them reserved). Cannot fail.
+  void insertRows(int off, int d) {
+    const int tail = dim() - off;
+    for (Eigen::VectorXd* v : {&mean_, &first_, &ideal_}) std::copy_backward(v->data() + off, v->data() + off + tail, v->data() + off + tail + d);
+    cov_.insert(off, d);
   }
 
   /// Deletes rows and columns [off, off + d) from the means and the covariance.
@@ -1208,11 +1472,24 @@ class BasicEkf {
     return Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, M>>(workspace_a_.data(), dim(), cols);
   }
 
+  /// The update's blocks of H, as stored in the batch workspace (detail::BatchLinearizations),
+  /// for the compressed EKF.
+  detail::CompressedUpdateTerms updateBlocks(int count, int m, int landmark_dim) const {
+    detail::CompressedUpdateTerms t{};
+    t.lins = batch_.lins.data();
+    t.offsets = batch_.offsets.data();
+    t.count = count;
+    t.m = m;
+    t.landmark_dim = landmark_dim;
+    return t;
+  }
+
   /// Applies the gain for P H^T (n x M, overwritten), the Cholesky factor of S, the
-  /// innovation and R. `applyHt(A, out)` writes out = A H^T for an n x n matrix A (needed by
+  /// innovation, R and (for the compressed EKF) the blocks of H. `applyHt(A, out)` writes out = A H^T for an n x n matrix A (needed by
   /// the Joseph form).
   template <int M, typename PHtMap, typename Llt, typename Nu, typename RMat, typename ApplyHt>
-  void applyGain(PHtMap& PHt, const Llt& llt, const Nu& nu, const RMat& R, ApplyHt&& applyHt) {
+  void applyGain(PHtMap& PHt, const Llt& llt, const Nu& nu, const RMat& R, detail::CompressedUpdateTerms blocks,
+                 ApplyHt&& applyHt) {
     revision_ = detail::nextRevision();
     auto P = cov_.inUse();
     auto delta = meanIncrement();
@@ -1220,16 +1497,26 @@ class BasicEkf {
     toInvariantIncrement(delta);
     prepareGaugeTransport(delta);
     checkPosteriorDomain(delta);  // may throw; nothing of the filter is written yet
-    if constexpr (std::is_same_v<UpdateForm, JosephUpdate>) {
+    constexpr bool kJoseph = std::is_same_v<UpdateForm, JosephUpdate>;
+    if (compressed()) {
+      // The passive part's share of this update, into the region's workspaces (may allocate).
+      blocks.factor = llt.matrixLLT().data();
+      blocks.factor_stride = llt.matrixLLT().outerStride();
+      blocks.nu = nu.data();
+      blocks.gain = gain.data();
+      blocks.gain_is_k = kJoseph;
+      compression_->stageUpdate(*this, blocks);
+    }
+    if constexpr (kJoseph) {
       const auto A = JosephUpdate::posterior<M>(P, gain, PHt, R, batch_, std::forward<ApplyHt>(applyHt));  // may allocate
       applyMeanIncrement(delta);
       P.template triangularView<Eigen::Lower>() = A;
     } else {
       (void)R;
-      (void)applyHt;
       applyMeanIncrement(delta);
       SymmetricUpdate::downdate<M>(P, gain, parallel_);
     }
+    if (compressed()) compression_->commitUpdate();
     carryCovarianceToPosterior();
     carryCovarianceAlongGauge();
     normalizeAll();
@@ -1448,7 +1735,8 @@ class BasicEkf {
   void checkPosteriorDomain(const Delta& delta) const {
     constexpr bool any = (detail::HasDomain<Landmarks_>::value || ...);
     if constexpr (any) {
-      for (const LandmarkSlot& s : slots_.slots()) checkSlotDomain(s, delta, std::index_sequence_for<Landmarks_...>());
+      for (const LandmarkSlot& s : slots_.slots())
+        if (s.offset < delta.size()) checkSlotDomain(s, delta, std::index_sequence_for<Landmarks_...>());
     }
   }
 
@@ -1485,12 +1773,15 @@ class BasicEkf {
       const Mat<kRobotDim, kRobotDim> N = Robot::normalizationJacobian(robotMean());
       detail::normalize<Robot>(robot_mean_);
       cov_.template transformRobotBlock<kRobotDim>(N, RobotCovariance(N * robotCovariance() * N.transpose()));
+      if (compressed()) compression_->predictRobot(N.data());  // a linear map of the robot's rows
     } else {
       detail::normalize<Robot>(robot_mean_);
     }
     constexpr bool any = (detail::HasNormalize<Landmarks_>::value || ...);
     if constexpr (any) {
-      for (const LandmarkSlot& s : slots_.slots()) normalizeSlot(s, std::index_sequence_for<Landmarks_...>());
+      // Within the update's rows (the compressed EKF's active part; all of them otherwise).
+      for (const LandmarkSlot& s : slots_.slots())
+        if (s.offset < dim()) normalizeSlot(s, std::index_sequence_for<Landmarks_...>());
     }
   }
 
@@ -1534,6 +1825,12 @@ class BasicEkf {
   GaugeInverse gauge_inverse_choice_ = GaugeInverse::kRobot;
 
   detail::BatchWorkspace batch_;
+
+  // The compressed EKF (setCompression; empty: off). Reached only through its hooks, so a
+  // program that never compresses compiles none of it.
+  detail::ClonePtr<detail::CompressionHooks<BasicEkf>> compression_;
+  template <typename>
+  friend class detail::Compression;
 };
 
 /// The filter with the default covariance update (symmetric form, one triangle).

@@ -91,6 +91,52 @@ class LowerCovariance {
     n_ -= d;
   }
 
+  /// Opens d zero rows and columns before row `off`, moving the blocks from `off` on down
+  /// and right in place (backwards, so an overlap is safe). Needs capacity for n + d; cannot
+  /// fail.
+  void insert(int off, int d) {
+    // Columns left of the gap: their rows from `off` on move down by d.
+    for (int j = 0; j < off; ++j) {
+      double* col = m_.col(j).data();
+      std::copy_backward(col + off, col + n_, col + n_ + d);
+      std::fill(col + off, col + off + d, 0.0);
+    }
+    // Columns from `off` on move right by d and down by d, the last one first.
+    for (int j = n_ - 1; j >= off; --j) {
+      const double* src = m_.col(j).data() + j;
+      double* dst = m_.col(j + d).data() + j + d;
+      std::copy(src, src + (n_ - j), dst);
+    }
+    // The gap's own columns.
+    for (int j = off; j < off + d; ++j) std::fill(m_.col(j).data() + j, m_.col(j).data() + n_ + d, 0.0);
+    n_ += d;
+  }
+
+  /// P <- P(perm, perm): row and column i of the result are perm[i] of P (perm: a
+  /// permutation of 0..n-1). The result is written into `spare`, a matrix of the storage's
+  /// size, which then becomes the storage (the old storage is handed back in `spare`), so
+  /// nothing is allocated. Each column is copied in runs of rows that stay consecutive.
+  template <typename Perm>
+  void permute(const Perm& perm, Eigen::MatrixXd& spare) {
+    for (int j = 0; j < n_; ++j) {
+      const int pj = perm[j];
+      double* dst = spare.col(j).data();
+      for (int i = j; i < n_;) {
+        const int r0 = perm[i];
+        int k = 1;
+        while (i + k < n_ && perm[i + k] == r0 + k) ++k;
+        if (r0 >= pj) {  // stored in column pj, below its diagonal
+          const double* src = m_.col(pj).data() + r0;
+          std::copy(src, src + k, dst + i);
+        } else {  // above the diagonal (all or part): read the transposed entries
+          for (int t = 0; t < k; ++t) dst[i + t] = (*this)(r0 + t, pj);
+        }
+        i += k;
+      }
+    }
+    m_.swap(spare);
+  }
+
   /// P_rr <- P_rr_next (symmetrized), P_mr <- P_mr F^T: the robot block (the first R rows)
   /// and its cross-covariances through a robot-only Jacobian F (eq. 2.27). O(n).
   template <int R>

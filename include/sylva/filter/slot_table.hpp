@@ -69,12 +69,39 @@ class SlotTable {
     closeGap(k, s.dim);
   }
 
-  /// Moves slot k to the end as `moved` (same id: a reparametrization, whose new block the
-  /// filter appended after removing the old one). Allocates nothing.
-  void moveToEnd(std::size_t k, const LandmarkSlot& moved) {
+  /// Moves slot k to index `to` (counted without it) as `moved` (same id, at `moved.offset`,
+  /// where the filter put its new block: a reparametrization). Allocates nothing.
+  void moveTo(std::size_t k, const LandmarkSlot& moved, std::size_t to) {
     closeGap(k, slots_[k].dim);
-    index_[moved.id] = slots_.size();  // the entry exists: no allocation
-    slots_.push_back(moved);           // one slot fewer than before: no allocation
+    slots_.insert(slots_.begin() + static_cast<std::ptrdiff_t>(to), moved);  // one slot fewer than before
+    for (std::size_t j = to; j < slots_.size(); ++j) {
+      if (j > to) slots_[j].offset += moved.dim;
+      index_[slots_[j].id] = j;  // the entry exists: no allocation
+    }
+  }
+
+  /// Inserts `slot` (after `reserveOne`) as slot k, at its offset: the slots from k on move
+  /// down by its size. Its index entry is the one allocation, made first: if it fails, the
+  /// table is unchanged.
+  void insertAt(std::size_t k, const LandmarkSlot& slot) {
+    index_.emplace(slot.id, k);
+    slots_.insert(slots_.begin() + static_cast<std::ptrdiff_t>(k), slot);  // room reserved
+    for (std::size_t j = k + 1; j < slots_.size(); ++j) {
+      slots_[j].offset += slot.dim;
+      index_[slots_[j].id] = j;  // the entry exists: no allocation
+    }
+  }
+
+  /// Lays the slots out in the order of `order` (the same slots, each once), from offset
+  /// `first`. Allocates nothing (`order` has the table's size).
+  void reorder(const std::vector<LandmarkSlot>& order, int first) {
+    slots_ = order;  // same size: the vector keeps its storage
+    int offset = first;
+    for (std::size_t j = 0; j < slots_.size(); ++j) {
+      slots_[j].offset = offset;
+      offset += slots_[j].dim;
+      index_[slots_[j].id] = j;  // the entry exists: no allocation
+    }
   }
 
  private:
