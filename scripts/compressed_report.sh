@@ -2,7 +2,10 @@
 # Regenerates docs/compressed-ekf.md and docs/compressed-ekf.figures.json: a Release build of
 # bench_compressed_ekf (baseline x86-64: no -march, as CMake's Release and Debian build) in
 # BUILD_DIR (default build-bench-baseline), its lap-2 families run REPETITIONS times (default
-# 3) interleaved at random, then scripts/compressed_report.py. About 5 minutes on 2 cores.
+# 3) interleaved at random; then, when the Victoria Park data are there (DATA_DIR, default
+# ../shared/data), examples/victoria_park --compare-compressed over the whole run (both
+# variants, plain and compressed, the textbook linearization); then
+# scripts/compressed_report.py. About 10 minutes on 2 cores.
 #
 # Usage: bash scripts/compressed_report.sh [BUILD_DIR]
 set -euo pipefail
@@ -10,21 +13,32 @@ set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build_dir="${1:-${root}/build-bench-baseline}"
 repetitions="${REPETITIONS:-3}"
+data_dir="${DATA_DIR:-${root}/../shared/data}"
 
 # shellcheck source=lib/install_packages.sh
 source "${root}/scripts/lib/install_packages.sh"
-sylva_install_packages build-essential cmake ninja-build libeigen3-dev libbenchmark-dev python3
+sylva_install_packages build-essential cmake ninja-build libeigen3-dev libbenchmark-dev libcli11-dev \
+  nlohmann-json3-dev libboost-math-dev python3
 
 # clang++ when installed, as scripts/run_benchmarks.sh (CXX picks another at the first configure).
 if [[ ! -f "${build_dir}/CMakeCache.txt" && -z "${CXX:-}" ]] && command -v clang++ > /dev/null; then
   export CXX=clang++
 fi
 cmake -S "${root}" -B "${build_dir}" -G Ninja -DCMAKE_BUILD_TYPE=Release \
-  -DSYLVA_BUILD_BENCHMARKS=ON -DSYLVA_BUILD_TESTS=OFF -DSYLVA_BUILD_EXAMPLES=OFF
-cmake --build "${build_dir}" -j "${JOBS:-2}" --target bench_compressed_ekf
+  -DSYLVA_BUILD_BENCHMARKS=ON -DSYLVA_BUILD_TESTS=OFF -DSYLVA_BUILD_EXAMPLES=ON
+cmake --build "${build_dir}" -j "${JOBS:-2}" --target bench_compressed_ekf victoria_park
 "${build_dir}/bench/bench_compressed_ekf" --benchmark_filter='LapTwo' \
   --benchmark_repetitions="${repetitions}" --benchmark_enable_random_interleaving=true \
   --benchmark_out="${build_dir}/bench_compressed_ekf.json" --benchmark_out_format=json
-python3 "${root}/scripts/compressed_report.py" "${build_dir}/bench_compressed_ekf.json" \
+vp_args=()
+if [[ -f "${data_dir}/victoria-park/measurements.dat" ]]; then
+  echo "==> victoria_park --compare-compressed (the whole run, both variants)" >&2
+  "${build_dir}/examples/victoria_park/victoria_park" --data "${data_dir}/victoria-park" --compare-compressed \
+    --linearization current --json > "${build_dir}/victoria_park_compressed.json"
+  vp_args=(--victoria-park "${build_dir}/victoria_park_compressed.json")
+else
+  echo "compressed_report.sh: no Victoria Park data in ${data_dir}/victoria-park; its section says so" >&2
+fi
+python3 "${root}/scripts/compressed_report.py" "${build_dir}/bench_compressed_ekf.json" "${vp_args[@]}" \
   --out "${root}/docs/compressed-ekf.md" --figures "${root}/docs/compressed-ekf.figures.json" \
   --command "bash scripts/compressed_report.sh"

@@ -58,6 +58,12 @@ struct Config {
   double tentative_radius_m = 1.0;     ///< a reading feeds a tentative track this close
   double tentative_timeout_s = 2.0;    ///< a tentative track not seen for this long is dropped
   double duration_s = 0.0;             ///< 0: the whole run
+  /// The compressed EKF (sylva::Ekf::setCompression with withinRadius(radius, ahead)): its
+  /// active part is the landmarks within this radius of a point this far ahead of the car
+  /// when a region is entered. 0: the plain filter. Changes no estimate (up to round-off),
+  /// only the time; refused with the invariant linearization (docs/filter.md).
+  double compress_radius_m = 0.0;
+  double compress_ahead_m = 0.0;
 };
 
 inline nlohmann::json toJson(const Config& c) {
@@ -85,7 +91,9 @@ inline nlohmann::json toJson(const Config& c) {
           {"confirm_sightings", c.confirm_sightings},
           {"tentative_radius_m", c.tentative_radius_m},
           {"tentative_timeout_s", c.tentative_timeout_s},
-          {"duration_s", c.duration_s}};
+          {"duration_s", c.duration_s},
+          {"compress_radius_m", c.compress_radius_m},
+          {"compress_ahead_m", c.compress_ahead_m}};
 }
 
 }  // namespace victoria_park

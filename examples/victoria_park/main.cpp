@@ -9,7 +9,9 @@
 //
 // Output: a table per variant, --json for {"config": ..., "point": {...}, "tree": {...}},
 // --svg-prefix for a map per variant, --robustness for the 81-setting noise study
-// (each of the four noise values x1.5, x1, /1.5), run on --threads threads.
+// (each of the four noise values x1.5, x1, /1.5), run on --threads threads,
+// --compare-compressed for each variant run plain and with the compressed EKF (times, and the
+// difference of the final states).
 // Without data at --data the program says where to get it and exits with status 77.
 
 #include <algorithm>
@@ -128,6 +130,46 @@ Study robustness(const sylva::datasets::VictoriaParkData& data, const Config& ba
   return s;
 }
 
+/// The largest entry of |a - b| over the largest of |b| (0 for empty states).
+double relativeDifference(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
+  if (b.size() == 0) return 0.0;
+  return (a - b).cwiseAbs().maxCoeff() / std::max(b.cwiseAbs().maxCoeff(), 1e-300);
+}
+
+/// Variant V plain and compressed on the same data: both times, and how far apart the final
+/// states are (they are the same filter up to round-off, unless an association decision
+/// flipped on a round-off difference). Returns whether they agree to 1e-9.
+template <class V>
+bool compareCompressed(const sylva::datasets::VictoriaParkData& data, const Config& cfg, const std::vector<char>& valid,
+                       const char* name, bool json, nlohmann::json& out) {
+  Config plain_cfg = cfg;
+  plain_cfg.compress_radius_m = 0.0;
+  FinalState plain_state, compressed_state;
+  const RunResult plain = runSlam<V>(data, plain_cfg, valid, &plain_state);
+  const RunResult compressed = runSlam<V>(data, cfg, valid, &compressed_state);
+  const bool same_landmarks = plain_state.ids == compressed_state.ids;
+  const double mean_difference = same_landmarks ? relativeDifference(compressed_state.mean, plain_state.mean) : INFINITY;
+  const double covariance_difference =
+      same_landmarks ? relativeDifference(compressed_state.covariance, plain_state.covariance) : INFINITY;
+  const bool agree = same_landmarks && mean_difference <= 1e-9 && covariance_difference <= 1e-9;
+  out[name] = {{"plain", toJson(plain)},
+               {"compressed", toJson(compressed)},
+               {"global_updates", compressed.global_updates},
+               {"time_ratio", compressed.runtime_s / plain.runtime_s},
+               {"same_landmarks", same_landmarks},
+               {"mean_difference", mean_difference},
+               {"covariance_difference", covariance_difference},
+               {"agree", agree}};
+  if (!json)
+    std::cout << std::fixed << std::setprecision(2) << name << ": plain " << plain.runtime_s << " s, compressed "
+              << compressed.runtime_s << " s (" << compressed.runtime_s / plain.runtime_s << "x; "
+              << compressed.global_updates << " global updates) | " << plain.landmarks << " landmarks"
+              << (same_landmarks ? ", the same ids" : ", DIFFERENT ids") << std::scientific
+              << " | final state: mean differs by " << mean_difference << ", covariance by " << covariance_difference
+              << " of their largest entries: " << (agree ? "agree" : "DIFFER") << "\n";
+  return agree;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -174,7 +216,27 @@ int main(int argc, char** argv) {
   app.add_option("--errors-csv", errors_csv, "write <prefix>_<variant>.csv: time, aligned GPS error, valid flag per fix");
   app.add_flag("--robustness", study, "run the 81-setting noise study (every noise value x1.5, x1, /1.5)");
   app.add_option("--threads", threads, "threads for the robustness study")->check(CLI::Range(1, 64))->capture_default_str();
+  app.add_option("--compress-radius", cfg.compress_radius_m,
+                 "the compressed EKF's region radius (m; 0: the plain filter; needs --linearization current)")
+      ->check(sylva_examples::positive(true))->capture_default_str();
+  app.add_option("--compress-ahead", cfg.compress_ahead_m, "the region's centre ahead of the car (m)")
+      ->check(sylva_examples::finite(false))->capture_default_str();
+  bool compare_compressed = false;
+  app.add_flag("--compare-compressed", compare_compressed,
+               "run each variant plain and compressed (--compress-radius, default 2 x --max-range, centred "
+               "--max-range ahead), report both times and the largest difference of the final states, and exit 1 "
+               "if they differ by more than 1e-9 of their largest entry");
   CLI11_PARSE(app, argc, argv);
+  if (compare_compressed && cfg.compress_radius_m == 0.0) {
+    cfg.compress_radius_m = 2.0 * cfg.max_range_m;
+    cfg.compress_ahead_m = cfg.max_range_m;
+  }
+  if (cfg.compress_radius_m > 0.0 && cfg.linearization == "invariant") {
+    std::cerr << "victoria_park: the compressed EKF (--compress-radius, --compare-compressed) needs --linearization "
+                 "current (or first-estimates with --bias-states none): the invariant update, the default, transforms "
+                 "the whole covariance at every update\n";
+    return 2;
+  }
   if (cfg.bias_states != "none" && cfg.linearization == "first-estimates") {
     std::cerr << "victoria_park: --linearization first-estimates needs --bias-states none (the default is '"
               << Config().bias_states << "'): the car with bias states has no first-estimates Jacobian (its biases "
@@ -196,8 +258,13 @@ int main(int argc, char** argv) {
     nlohmann::json out;
     out["config"] = toJson(cfg);
     out["data"] = data_dir;
+    bool agree = true;
     const auto report = [&](auto variant, const char* name, const char* title) {
       using V = decltype(variant);
+      if (compare_compressed) {
+        agree = compareCompressed<V>(data, cfg, valid, name, json, out) && agree;
+        return;
+      }
       const RunResult r = runSlam<V>(data, cfg, valid);
       if (!json) printTable(r);
       out[name] = toJson(r);
@@ -220,6 +287,7 @@ int main(int argc, char** argv) {
     if (variants != "tree") report(PointVariant{}, "point", "Victoria Park, EKF-SLAM with point landmarks (range, bearing)");
     if (variants != "point") report(TreeVariant{}, "tree", "Victoria Park, EKF-SLAM with tree landmarks (range, bearing, diameter)");
     if (json) std::cout << out.dump(2) << "\n";
+    if (!agree) return 1;
   } catch (const sylva::Error& e) {
     std::cerr << "victoria_park: " << e.what() << "\n";
     return 1;

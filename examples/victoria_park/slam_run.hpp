@@ -33,6 +33,7 @@
 #include <vector>
 
 #include <sylva/datasets/victoria_park.hpp>
+#include <sylva/filter/compression.hpp>
 #include <sylva/filter/ekf.hpp>
 #include <sylva/landmarks.hpp>
 #include <sylva/measurements.hpp>
@@ -105,6 +106,15 @@ struct RunResult {
   double speed_scale_sigma = std::nan("");
   double steering_offset_rad = std::nan("");
   double steering_offset_sigma_rad = std::nan("");
+  long global_updates = 0;             ///< the compressed EKF's (0 for the plain filter)
+};
+
+/// The filter's final estimate with the landmarks in increasing order of id (the compressed
+/// EKF orders its slots by region), for comparing two runs.
+struct FinalState {
+  Eigen::VectorXd mean;
+  Eigen::MatrixXd covariance;
+  std::vector<Id> ids;
 };
 
 namespace detail {
@@ -184,7 +194,8 @@ class OdometryIntegrator {
 }  // namespace detail
 
 template <class V, class Car>
-RunResult runSlamWith(const ds::VictoriaParkData& data, const Config& cfg, const std::vector<char>& gps_valid) {
+RunResult runSlamWith(const ds::VictoriaParkData& data, const Config& cfg, const std::vector<char>& gps_valid,
+                      FinalState* final_state) {
   using Filter = sylva::Ekf<Car, typename V::Landmark>;
   constexpr int kCarDim = Car::kDim;
   using Model = typename V::Model;
@@ -207,6 +218,7 @@ RunResult runSlamWith(const ds::VictoriaParkData& data, const Config& cfg, const
   if (cfg.linearization == "first-estimates") ekf.setLinearizationPoint(sylva::LinearizationPoint::kFirstEstimates);
   if (cfg.linearization == "invariant") ekf.setLinearizationPoint(sylva::LinearizationPoint::kInvariant);
   ekf.reserve(V::Landmark::kDim * 512);
+  if (cfg.compress_radius_m > 0.0) ekf.setCompression(Filter::withinRadius(cfg.compress_radius_m, cfg.compress_ahead_m));
   detail::OdometryIntegrator<Filter> odometry(data.odometry, cfg, sylva::Ackermann2D(cfg.wheelbase_m, cfg.encoder_offset_m));
 
   // Steps 2-5 of the file comment. Candidates: landmarks in front of the laser and within range.
@@ -216,10 +228,11 @@ RunResult runSlamWith(const ds::VictoriaParkData& data, const Config& cfg, const
   options.new_landmark_probability = cfg.new_landmark_probability;
   options.new_landmarks = sylva::slam::NewLandmarks::kTentative;
   options.tentative = {cfg.confirm_sightings, cfg.tentative_radius_m, cfg.tentative_timeout_s};
-  sylva::slam::FrontEnd<Filter, Model, typename V::Inverse> front_end(
+  // Braces: with parentheses g++ reads `typename V::Inverse(mount)` as a parameter declaration.
+  sylva::slam::FrontEnd<Filter, Model, typename V::Inverse> front_end{
       Model(mount), typename V::Inverse(mount), options,
       sylva::slam::candidatesInReach<typename V::Landmark>(sylva::RangeBearing(mount),
-                                                           {cfg.max_range_m + 5.0, 100.0 * sylva::kRadPerDeg}));
+                                                           {cfg.max_range_m + 5.0, 100.0 * sylva::kRadPerDeg})};
 
   RunResult out;
   out.variant = V::kName;
@@ -265,6 +278,29 @@ RunResult runSlamWith(const ds::VictoriaParkData& data, const Config& cfg, const
     const auto l = ekf.template landmarkMean<typename V::Landmark>(s.id);
     out.map.push_back(MapLandmark{toGps(l.template head<2>()), V::radius(l), front_end.sightings(s.id)});
   }
+  out.global_updates = ekf.globalUpdates();
+  if (final_state != nullptr) {
+    std::vector<sylva::LandmarkSlot> by_id = ekf.slots();
+    std::sort(by_id.begin(), by_id.end(), [](const sylva::LandmarkSlot& a, const sylva::LandmarkSlot& b) { return a.id < b.id; });
+    std::vector<int> rows;
+    for (int i = 0; i < Filter::kRobotDim; ++i) rows.push_back(i);
+    final_state->ids.clear();
+    for (const sylva::LandmarkSlot& s : by_id) {
+      final_state->ids.push_back(s.id);
+      for (int i = 0; i < s.dim; ++i) rows.push_back(s.offset + i);
+    }
+    static_assert(Filter::kRobotStateDim == Filter::kRobotDim, "the car's state is its own tangent");
+    const Eigen::VectorXd mean = ekf.mean();
+    const Eigen::MatrixXd covariance = ekf.covariance();
+    const auto n = static_cast<Eigen::Index>(rows.size());
+    final_state->mean.resize(n);
+    final_state->covariance.resize(n, n);
+    for (Eigen::Index j = 0; j < n; ++j) {
+      final_state->mean[j] = mean[rows[static_cast<std::size_t>(j)]];
+      for (Eigen::Index i = 0; i < n; ++i)
+        final_state->covariance(i, j) = covariance(rows[static_cast<std::size_t>(i)], rows[static_cast<std::size_t>(j)]);
+    }
+  }
   if constexpr (kCarDim == 5) {
     out.speed_scale = ekf.robotMean()[3];
     out.steering_offset_rad = ekf.robotMean()[4];
@@ -276,9 +312,10 @@ RunResult runSlamWith(const ds::VictoriaParkData& data, const Config& cfg, const
 
 /// One run of variant V with the car the configuration asks for.
 template <class V>
-RunResult runSlam(const ds::VictoriaParkData& data, const Config& cfg, const std::vector<char>& gps_valid) {
-  if (cfg.bias_states != "none") return runSlamWith<V, sylva::Ackermann2DWithBias>(data, cfg, gps_valid);
-  return runSlamWith<V, sylva::Ackermann2D>(data, cfg, gps_valid);
+RunResult runSlam(const ds::VictoriaParkData& data, const Config& cfg, const std::vector<char>& gps_valid,
+                  FinalState* final_state = nullptr) {
+  if (cfg.bias_states != "none") return runSlamWith<V, sylva::Ackermann2DWithBias>(data, cfg, gps_valid, final_state);
+  return runSlamWith<V, sylva::Ackermann2D>(data, cfg, gps_valid, final_state);
 }
 
 }  // namespace victoria_park

@@ -283,6 +283,32 @@ TEST_CASE("compressed EKF: the active part leads the state and holds what the se
   CHECK(ekf.activeDim() == ekf.dim());
 }
 
+TEST_CASE("compressed EKF: a robot that leaves its region enters a new one at the next predict",
+          "[filter][compressed]") {
+  using Filter = sylva::Ekf<sylva::Unicycle2D, sylva::Point2>;
+  Filter ekf(Vec<3>::Zero(), Mat<3, 3>::Identity() * 1e-4);
+  const double ranges[] = {2.0, 4.0, 20.0, 30.0};
+  for (Id id = 0; id < 4; ++id) ekf.add(id, sylva::InverseRangeBearing(), Vec<2>(ranges[id], 0.0), kSensorNoise);
+  ekf.setCompression(Filter::withinRadius(10.0));
+  const sylva::Gaussian<2> small = sylva::Gaussian<2>::sigmas(Vec<2>(1e-3, 1e-4));
+  ekf.predict(Vec<2>(13.0, 0.0), 1.0, small);  // from the origin: still inside when it starts
+  CHECK(ekf.globalUpdates() == 0);
+  CHECK(ekf.activeDim() == 3 + 2 * 2);
+  // Now 13 m from the region's centre: this predict enters a region around x = 13 first.
+  ekf.predict(Vec<2>(0.0, 0.0), 1.0, small);
+  CHECK(ekf.globalUpdates() == 1);
+  CHECK(ekf.activeDim() == 3 + 2 * 2);
+  for (const Id id : {1, 2}) CHECK(ekf.slot(id).offset < ekf.activeDim());  // at 9 and 7 m
+  for (const Id id : {0, 3}) CHECK(ekf.slot(id).offset >= ekf.activeDim());  // at 11 and 17 m
+  // A selector alone never leaves on its own.
+  ekf.setCompression([](const Filter&, const sylva::LandmarkSlot& slot) { return slot.id == 0; });
+  const long before = ekf.globalUpdates();
+  ekf.predict(Vec<2>(50.0, 0.0), 1.0, small);
+  ekf.predict(Vec<2>(50.0, 0.0), 1.0, small);
+  CHECK(ekf.globalUpdates() == before);
+  CHECK(ekf.activeDim() == 3 + 2);
+}
+
 TEST_CASE("compressed EKF: refused input leaves the filter as it was", "[filter][compressed][errors]") {
   using Filter = sylva::Ekf<sylva::Unicycle2D, sylva::Point2>;
   Run<Filter> run(5, 60, sylva::LinearizationPoint::kCurrentEstimate);

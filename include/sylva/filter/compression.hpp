@@ -24,11 +24,11 @@ namespace sylva::detail {
 template <typename Ekf>
 class Compression final : public CompressionHooks<Ekf> {
   using Hooks = CompressionHooks<Ekf>;
-  using Selector = typename Ekf::RegionSelector;
+  using Rule = typename Ekf::RegionRule;
   static constexpr int kRobotDim = Ekf::kRobotDim;
 
  public:
-  explicit Compression(Selector select) : select_(std::move(select)) {}
+  explicit Compression(Rule rule) : rule_(std::move(rule)) {}
 
   Hooks* clone() const override { return new Compression(*this); }
   int activeDim() const override { return region_.activeDim(); }
@@ -53,7 +53,7 @@ class Compression final : public CompressionHooks<Ekf> {
     for (std::size_t k = 0; k < all.size(); ++k) {
       bool in = false;
       for (std::size_t f = 0; f < count && !in; ++f) in = forced[f] == all[k].id;
-      if (in || select_(ekf, all[k])) {
+      if (in || rule_.select(ekf, all[k])) {
         chosen_[k] = 1;
         a += all[k].dim;
       }
@@ -89,6 +89,11 @@ class Compression final : public CompressionHooks<Ekf> {
       ekf.revision_ = nextRevision();  // linearizations made before name the old rows
     }
     region_.commitBegin();
+    entry_robot_ = ekf.robotMean();
+  }
+
+  void enterRegionIfLeft(Ekf& ekf) override {
+    if (rule_.left && rule_.left(ekf, entry_robot_)) enterRegion(ekf, nullptr, 0);
   }
 
   void predictRobot(const double* F) override {
@@ -164,7 +169,8 @@ class Compression final : public CompressionHooks<Ekf> {
   }
 
  private:
-  Selector select_;
+  Rule rule_;
+  typename Ekf::RobotState entry_robot_;  ///< the robot's mean when the region was entered
   CompressedRegion region_;
   long global_updates_ = 0;
   // Workspaces of entering a region (they only grow).

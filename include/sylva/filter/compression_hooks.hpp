@@ -56,6 +56,9 @@ class CompressionHooks {
   /// `forced` (count ids), lead the state. No estimate changes.
   virtual void enterRegion(Ekf& ekf, const Id* forced, std::size_t count) = 0;
 
+  /// Enters a new region if the rule says the robot has left this one (before a predict).
+  virtual void enterRegionIfLeft(Ekf& ekf) = 0;
+
   /// The active rows moved by F (kRobotDim square, column-major: the robot's rows of phi).
   virtual void predictRobot(const double* F) = 0;
   /// An update of the active part: staged (may allocate, changes nothing), then committed.

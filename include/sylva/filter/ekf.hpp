@@ -358,7 +358,21 @@ class BasicEkf {
   /// Chooses the landmarks of the compressed EKF's active part when a region is entered.
   using RegionSelector = std::function<bool(const BasicEkf&, const LandmarkSlot&)>;
 
-  /// Turns the compressed EKF on (Guivant and Nebot 2001), with `select` choosing the
+  /// How the compressed EKF makes its regions: `select` chooses the active landmarks when a
+  /// region is entered; `left`, if given, is asked at each predict with the robot's state
+  /// when the region was entered, and a true answer enters a new region. A selector alone
+  /// converts to a rule without `left`; `withinRadius` gives both.
+  struct RegionRule {
+    using Left = std::function<bool(const BasicEkf&, const RobotState& at_entry)>;
+    RegionRule() = default;
+    template <typename Select, typename = std::enable_if_t<std::is_constructible_v<RegionSelector, Select>>>
+    RegionRule(Select select_landmark, Left left_region = nullptr)  // NOLINT: converts a selector
+        : select(std::move(select_landmark)), left(std::move(left_region)) {}
+    RegionSelector select;
+    Left left;
+  };
+
+  /// Turns the compressed EKF on (Guivant and Nebot 2001), with `rule.select` choosing the
   /// landmarks of the active part, or off (nullptr: a global update, then the plain filter).
   ///
   /// The active part A is the robot, the landmarks `select` chose when the region was
@@ -368,8 +382,11 @@ class BasicEkf {
   /// update, O(n^2 a). The filter enters a new region (a global update, `select` asked
   /// again, the state reordered so that A leads it; O(n^2)) when:
   ///   - an update observes a landmark of B (it joins the new region whatever `select` says),
-  ///   - the caller calls `enterRegion()` (e.g. when the robot has moved on),
-  ///   - a landmark of A is reparametrized.
+  ///   - the rule's `left` says, at a predict, that the robot has left the region (for
+  ///     `withinRadius`: the robot is outside the region's disc),
+  ///   - the caller calls `enterRegion()`.
+  /// Removing or reparametrizing a landmark of A costs a global update (the region keeps its
+  /// landmarks).
   /// Everything read through the public accessors is up to date: the landmark accessors,
   /// `mean()` and `covariance()` correct what B holds on the fly (O(a^2) per block, O(n^2 a)
   /// for the whole covariance), and `covarianceView()` refuses (kInvalidArgument) until
@@ -380,10 +397,10 @@ class BasicEkf {
   /// The region is entered at once: `select` is asked about every landmark now. Needs
   /// `#include <sylva/filter/compression.hpp>`, which a program that never compresses does
   /// not compile.
-  void setCompression(RegionSelector select) {
+  void setCompression(RegionRule rule) {
     static_assert(detail::IsDefined<detail::Compression<BasicEkf>>::value,
                   "Ekf::setCompression needs #include <sylva/filter/compression.hpp>");
-    if (!select) {
+    if (!rule.select) {
       synchronize();
       compression_.reset();
       return;
@@ -396,7 +413,7 @@ class BasicEkf {
     // The new region is entered before it replaces the old one: if that fails, the filter
     // keeps its old region (the global update above changed no estimate).
     detail::ClonePtr<detail::CompressionHooks<BasicEkf>> next;
-    next.reset(new detail::Compression<BasicEkf>(std::move(select)));
+    next.reset(new detail::Compression<BasicEkf>(std::move(rule)));
     next->enterRegion(*this, nullptr, 0);
     compression_ = std::move(next);
   }
@@ -422,14 +439,16 @@ class BasicEkf {
     if (compressed()) compression_->enterRegion(*this, nullptr, 0);
   }
 
-  /// A selector for `setCompression`: the landmarks within `radius_m` of a point `ahead_m`
-  /// in front of the robot (along its heading; 0: the robot's own position), for a robot
-  /// that declares kPlanarPosition (every Pose2D robot; a point ahead needs kPlanarHeading
-  /// too). A robot that moves forward stays in a region centred ahead of it about twice as
-  /// long as in one centred on it: with a sensor of range s, ahead_m = radius_m - s lets it
-  /// travel 2 (radius_m - s) before a landmark outside the region comes into view. Landmark
-  /// types without a planar position (kPlanarPosition) are always active.
-  static RegionSelector withinRadius(double radius_m, double ahead_m = 0.0) {
+  /// A rule for `setCompression`: the active landmarks are those within `radius_m` of a
+  /// point `ahead_m` in front of the robot when the region is entered (along its heading; 0:
+  /// the robot's own position), and the robot has left the region when it is outside that
+  /// disc (a new region is then entered at the next predict). For a robot that declares
+  /// kPlanarPosition (every Pose2D robot; a point ahead needs kPlanarHeading too). A robot
+  /// that moves forward stays in a region centred ahead of it about twice as long as in one
+  /// centred on it: with a sensor of range s, ahead_m = radius_m - s lets it travel
+  /// 2 (radius_m - s) before a landmark outside the region comes into view. Landmark types
+  /// without a planar position (kPlanarPosition) are always active.
+  static RegionRule withinRadius(double radius_m, double ahead_m = 0.0) {
     static_assert(detail::HasPlanarPosition<Robot>::value,
                   "withinRadius needs a robot that declares kPlanarPosition (every Pose2D robot)");
     if (!(radius_m > 0.0) || !std::isfinite(radius_m) || !std::isfinite(ahead_m))
@@ -440,12 +459,19 @@ class BasicEkf {
         fail(ErrorCode::kInvalidArgument, "Ekf::withinRadius: a centre ahead of the robot needs a robot that "
                                           "declares kPlanarHeading");
     }
-    return [radius_m, ahead_m](const BasicEkf& ekf, const LandmarkSlot& slot) {
-      Vec<2> centre = ekf.robotMean().template segment<2>(Robot::kPlanarPosition);
-      if constexpr (detail::HasPlanarHeading<Robot>::value) {
-        const double heading = ekf.robotMean()[Robot::kPlanarHeading];
-        centre += ahead_m * Vec<2>(std::cos(heading), std::sin(heading));
-      }
+    // The region's centre for a robot at x.
+    const auto centreFor = [ahead_m](const RobotState& x) {
+      Vec<2> centre = x.template segment<2>(Robot::kPlanarPosition);
+      if constexpr (detail::HasPlanarHeading<Robot>::value)
+        centre += ahead_m * Vec<2>(std::cos(x[Robot::kPlanarHeading]), std::sin(x[Robot::kPlanarHeading]));
+      return centre;
+    };
+    const auto left = [radius_m, centreFor](const BasicEkf& ekf, const RobotState& at_entry) {
+      return (ekf.robotMean().template segment<2>(Robot::kPlanarPosition) - centreFor(at_entry)).squaredNorm() >
+             radius_m * radius_m;
+    };
+    const auto select = [radius_m, centreFor](const BasicEkf& ekf, const LandmarkSlot& slot) {
+      const Vec<2> centre = centreFor(ekf.robotMean());
       return ekf.visit(slot.id, [&](auto tag) {
         using L = typename decltype(tag)::type;
         if constexpr (detail::HasPlanarPosition<L>::value) {
@@ -456,6 +482,7 @@ class BasicEkf {
         }
       });
     };
+    return RegionRule(select, left);
   }
 
   /// The robot's true state, for LinearizationPoint::kIdeal: predict linearizes the motion
@@ -633,6 +660,10 @@ class BasicEkf {
     if (!P_rr_next.allFinite())
       fail(ErrorCode::kNonFinite,
            "Ekf::predict: the predicted covariance is not finite (the noise or the motion's Jacobian overflows it)");
+    // The compressed EKF: a robot that has left its region enters a new one (a global update
+    // and a reordering; no estimate changes, the robot's block stays where it is, and a
+    // failed allocation moves nothing).
+    if (compressed()) compression_->enterRegionIfLeft(*this);
     // From here on nothing can fail.
     robot_mean_ = next;
     robot_first_ = next;
