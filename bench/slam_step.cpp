@@ -24,6 +24,8 @@
 ///   BM_BoundLowerReadWrite    the same on the lower triangle only (half the bytes)
 ///   BM_GemmPeak               C += A B, 512 x 512 x 512 (argument unused): the compute peak,
 ///                             counter gflops
+///   BM_PhasePredict, BM_PhaseLinearize, BM_PhaseRankUpdate
+///                             prefixes of the batched step, for where its time goes (below)
 ///
 /// One iteration of a step family is one step of lap 2: iteration i runs step i mod K of
 /// lap 2 (K = min(lap length, 40)), starting again from a copy of the end-of-lap-1 filter
@@ -35,11 +37,13 @@
 
 #include <Eigen/Core>
 #include <algorithm>
+#include <vector>
 
 #include "common/build_context.hpp"
 #include "scenario/sylva_circle_slam.hpp"
 #include "sylva/core/thread_pool.hpp"
 #include "sylva/detail/lower_rank_update.hpp"
+#include "sylva/filter/linearization.hpp"
 #include "sylva/landmarks/point3.hpp"
 #include "sylva/landmarks/tree_xyzr.hpp"
 
@@ -99,6 +103,91 @@ void BM_StepBatchedWallOneThread(benchmark::State& state) { timeSteps<PointFilte
 void BM_StepBatchedWallTwoThreads(benchmark::State& state) {
   static sylva::ThreadPool pool(2);
   timeSteps<PointFilter>(state, sylva::Fusion::kBatched, &pool);
+}
+
+/// Where the time of a batched step goes, on the steps BM_StepBatched times (restarted from
+/// the end of lap 1 every K steps, as there). Each family runs a prefix of the step, so
+/// that differences of families of the same run give the phases:
+///   BM_PhasePredict     the prediction (and the split of the step's observations into known
+///                       and new landmarks)
+///   BM_PhaseLinearize   the prediction, then `linearize` for every observation of a known
+///                       landmark: what the batched update does first
+///   BM_PhaseRankUpdate  P -= W W^T on the lower triangle of the step's n x n P, with W of the
+///                       step's own rank (2 per known observation): the part of the update
+///                       whose flops are the compute floor of the machine limit
+/// so that, with BM_StepBatched: linearization = Linearize - Predict; the update without its
+/// rank update (P H^T, S and its factor, the gain, the mean) = StepBatched - Linearize -
+/// RankUpdate. Counter flops_per_step: n (n + 1) k, the rank-k lower update's multiplies and
+/// adds, averaged over the steps (with BM_GemmPeak's rate: the compute floor).
+enum class Prefix { kPredict, kLinearize };
+
+void timePrefix(benchmark::State& state, Prefix prefix) {
+  const int landmarks = static_cast<int>(state.range(0));
+  const World& w = worldOf(landmarks);
+  const PointFilter& start = endOfLapOne<PointFilter>(landmarks);
+  const int first = w.world.lapBegin(1);
+  const int timed = std::min(kMaxTimedSteps, w.world.stepsPerLap());
+  const auto noise = w.world.odometryNoise();
+  const double dt = w.world.config().dt_s;
+  PointFilter ekf = start;
+  sylva_bench::StepScratch scratch;
+  std::vector<sylva::Linearization<sylva::RangeBearing, PointFilter::kRobotDim>> lins;
+  lins.reserve(64);
+  const sylva::RangeBearing model;
+  int k = 0;
+  for (auto _ : state) {
+    if (k == timed) {
+      state.PauseTiming();
+      ekf = start;
+      k = 0;
+      state.ResumeTiming();
+    }
+    const SylvaStep& step = w.steps[static_cast<std::size_t>(first + k)];
+    sylva_bench::predictStep(ekf, step, noise, dt);
+    sylva_bench::splitObservations(ekf, step, scratch);
+    if (prefix == Prefix::kLinearize) {
+      lins.clear();
+      for (const auto& obs : scratch.known) lins.push_back(ekf.linearize(model, obs.id));
+      benchmark::DoNotOptimize(lins.data());
+    }
+    ++k;
+    benchmark::ClobberMemory();
+  }
+  state.counters["N"] = landmarks;
+  state.counters["n"] = start.dim();
+}
+void BM_PhasePredict(benchmark::State& state) { timePrefix(state, Prefix::kPredict); }
+void BM_PhaseLinearize(benchmark::State& state) { timePrefix(state, Prefix::kLinearize); }
+
+void BM_PhaseRankUpdate(benchmark::State& state) {
+  const int landmarks = static_cast<int>(state.range(0));
+  const World& w = worldOf(landmarks);
+  const PointFilter& start = endOfLapOne<PointFilter>(landmarks);
+  const int first = w.world.lapBegin(1);
+  const int timed = std::min(kMaxTimedSteps, w.world.stepsPerLap());
+  const int n = start.dim();
+  // The rank of each timed step: 2 per observation of a landmark already in the map.
+  std::vector<int> ranks;
+  double flops = 0.0;
+  for (int k = 0; k < timed; ++k) {
+    int known = 0;
+    for (const auto& obs : w.steps[static_cast<std::size_t>(first + k)].observations) known += start.contains(obs.id) ? 1 : 0;
+    ranks.push_back(2 * known);
+    flops += static_cast<double>(n) * (n + 1) * 2 * known;
+  }
+  Eigen::MatrixXd P = Eigen::MatrixXd::Identity(n, n);
+  const Eigen::MatrixXd W = Eigen::MatrixXd::Constant(n, *std::max_element(ranks.begin(), ranks.end()), 1e-6);
+  int k = 0;
+  for (auto _ : state) {
+    if (k == timed) k = 0;
+    sylva::detail::subtractLowerRankUpdate(P, W.leftCols(ranks[static_cast<std::size_t>(k)]));
+    ++k;
+    benchmark::ClobberMemory();
+  }
+  state.counters["N"] = landmarks;
+  state.counters["n"] = n;
+  state.counters["flops_per_step"] = flops / timed;
+  benchmark::DoNotOptimize(P.data());
 }
 
 /// P -= W W^T on the lower triangle (detail::subtractLowerRankUpdate) for a rank-24 W and an
@@ -171,6 +260,9 @@ BENCHMARK(BM_StepBatchedWallOneThread)->Apply(mapSizes)->UseRealTime()->Unit(ben
 BENCHMARK(BM_StepBatchedWallTwoThreads)->Apply(mapSizes)->UseRealTime()->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_RankUpdateWallOneThread)->DenseRange(64, 1024, 64)->Arg(2003)->Arg(4003)->UseRealTime()->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_RankUpdateWallTwoThreads)->DenseRange(64, 1024, 64)->Arg(2003)->Arg(4003)->UseRealTime()->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_PhasePredict)->Apply(mapSizes)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_PhaseLinearize)->Apply(mapSizes)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_PhaseRankUpdate)->Apply(mapSizes)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_BoundFullReadWrite)->Apply(mapSizes)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_BoundLowerReadWrite)->Apply(mapSizes)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_GemmPeak)->Unit(benchmark::kMicrosecond);

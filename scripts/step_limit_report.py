@@ -1,0 +1,179 @@
+#!/usr/bin/env python3
+"""docs/step-limit.md (and docs/step-limit.figures.json) from two runs of bench_slam_step,
+a baseline build and a -march=native one (scripts/step_limit_report.sh runs them).
+
+The machine limit of a batched step at map size N (issue 19) is the larger of
+  - the compute floor: the multiplies and adds of the step's exact rank-k update of the
+    lower triangle, n (n + 1) k (counter flops_per_step of BM_PhaseRankUpdate), at the GEMM
+    peak of the same repetition (BM_GemmPeak, 512^3), and
+  - the memory bound: reading and writing the lower triangle once (BM_BoundLowerReadWrite).
+Every ratio is taken within one repetition (the families are interleaved at random): one
+ratio per run, and a criterion reads "met" only if it holds in every run.
+"""
+
+import argparse
+import json
+import os
+import statistics
+import sys
+from collections import defaultdict
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from bench_report import single_runs  # noqa: E402  (the JSON reader the reports share)
+
+TARGET = 2.0  # issue 19: the step at most 2.0x the machine limit at every N, in both builds
+PHASE_SIZES = (50, 200, 1000)
+
+
+def load(path):
+    """runs[(family, N)][repetition] = entry with 'seconds'; gemm[repetition] = FLOP/s."""
+    data = json.load(open(path, encoding="utf-8"))
+    runs = defaultdict(dict)
+    gemm = {}
+    for family, args, b, seconds in single_runs(data):
+        rep = b.get("repetition_index", 0)
+        if family == "GemmPeak":
+            gemm[rep] = b["gflops"] * 1e9
+            continue
+        if not args:
+            continue
+        entry = dict(b)
+        entry["seconds"] = seconds
+        runs[(family, args[0])][rep] = entry
+    return runs, gemm, data.get("context", {})
+
+
+def us(seconds):
+    return f"{seconds * 1e6:.3g} us" if seconds < 1e-3 else f"{seconds * 1e3:.3g} ms"
+
+
+def analyse(runs, gemm):
+    """Per N: the per-run ratios of the step to the limit, and the medians of the parts."""
+    reps = sorted(gemm)
+    sizes = sorted(n for (family, n) in runs if family == "StepBatched")
+    rows = []
+    for n_landmarks in sizes:
+        step = runs[("StepBatched", n_landmarks)]
+        rank = runs[("PhaseRankUpdate", n_landmarks)]
+        bound = runs[("BoundLowerReadWrite", n_landmarks)]
+        common = [r for r in reps if r in step and r in rank and r in bound]
+        if not common:
+            continue
+        flops = rank[common[0]]["flops_per_step"]
+        floors = [flops / gemm[r] for r in common]
+        bounds = [bound[r]["seconds"] for r in common]
+        limits = [max(f, b) for f, b in zip(floors, bounds)]
+        ratios = [step[r]["seconds"] / lim for r, lim in zip(common, limits)]
+        row = {
+            "N": n_landmarks,
+            "n": int(step[common[0]]["n"]),
+            "step": statistics.median(step[r]["seconds"] for r in common),
+            "floor": statistics.median(floors),
+            "bound": statistics.median(bounds),
+            "limit": statistics.median(limits),
+            "ratios": ratios,
+            "runs": len(common),
+            "rank_over_floor": statistics.median(rank[r]["seconds"] / f for r, f in zip(common, floors)),
+        }
+        # The phases, from prefixes of the same run (medians over the runs).
+        predict = runs.get(("PhasePredict", n_landmarks), {})
+        linearize = runs.get(("PhaseLinearize", n_landmarks), {})
+        both = [r for r in common if r in predict and r in linearize]
+        if both:
+            row["phases"] = {
+                "predict": statistics.median(predict[r]["seconds"] for r in both),
+                "linearize": statistics.median(linearize[r]["seconds"] - predict[r]["seconds"] for r in both),
+                "rest": statistics.median(
+                    step[r]["seconds"] - linearize[r]["seconds"] - rank[r]["seconds"] for r in both),
+                "rank": statistics.median(rank[r]["seconds"] for r in both),
+            }
+        rows.append(row)
+    return rows
+
+
+def section(name, label, rows, gemm, context, w, figures):
+    w(f"## {name}")
+    w("")
+    w(f"Build: {context.get('build_type', '?')}, `{context.get('compiler', '?')}`, flags "
+      f"`{context.get('cxx_flags', '?')}` (Eigen's SIMD: {context.get('eigen_simd', '?')}); GEMM peak "
+      f"{statistics.median(gemm.values()) / 1e9:.1f} GFLOP/s (median of {len(gemm)} runs).")
+    w("")
+    w(f"| N | n | step | compute floor | memory bound | limit | step / limit: median [range] | <= {TARGET} in every run |")
+    w("|---|---|---|---|---|---|---|---|")
+    failing = []
+    for r in rows:
+        holds = max(r["ratios"]) <= TARGET
+        if not holds:
+            failing.append(str(r["N"]))
+        w(f"| {r['N']} | {r['n']} | {us(r['step'])} | {us(r['floor'])} | {us(r['bound'])} | {us(r['limit'])} | "
+          f"{statistics.median(r['ratios']):.2f} [{min(r['ratios']):.2f}, {max(r['ratios']):.2f}] | "
+          f"{'yes' if holds else '**no**'} |")
+        figures[f"{label}_ratio_{r['N']}"] = f"{statistics.median(r['ratios']):.2f}"
+    w("")
+    verdict = "**met**" if not failing else f"**not met** (N = {', '.join(failing)})"
+    w(f"Criterion (issue 19), {name.lower()}: the step at most {TARGET}x the limit at every N, in every run: {verdict}.")
+    figures[f"{label}_verdict"] = "met" if not failing else "not met"
+    figures[f"{label}_failing"] = ", ".join(failing) if failing else "none"
+    w("")
+    w("Where the time goes (medians over the runs; see the method above):")
+    w("")
+    w("| N | step | prediction | linearization | update without the rank update | rank update | rank update / compute floor |")
+    w("|---|---|---|---|---|---|---|")
+    for r in rows:
+        if r["N"] not in PHASE_SIZES or "phases" not in r:
+            continue
+        p = r["phases"]
+        share = lambda s: f"{us(s)} ({100 * s / r['step']:.0f}%)"  # noqa: E731
+        w(f"| {r['N']} | {us(r['step'])} | {share(p['predict'])} | {share(p['linearize'])} | {share(p['rest'])} | "
+          f"{share(p['rank'])} | {r['rank_over_floor']:.2f} |")
+        figures[f"{label}_rest_share_{r['N']}"] = f"{100 * p['rest'] / r['step']:.0f}"
+        figures[f"{label}_rank_over_floor_{r['N']}"] = f"{r['rank_over_floor']:.2f}"
+    w("")
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__)
+    parser.add_argument("--baseline", required=True, help="bench_slam_step JSON of the baseline build")
+    parser.add_argument("--native", required=True, help="bench_slam_step JSON of the -march=native build")
+    parser.add_argument("--out", required=True)
+    parser.add_argument("--figures", required=True)
+    parser.add_argument("--command", required=True)
+    args = parser.parse_args()
+
+    lines = []
+    w = lines.append
+    figures = {}
+    w("# The batched step against the machine limit")
+    w("")
+    w(f"Generated by `{args.command}` (scripts/step_limit_report.py); do not edit by hand.")
+    w("")
+    w("One batched step of the circle world (bench/scenario/circle_world.hpp: `Ekf<Odometry2D, Point2>`, "
+      "about 12 landmarks in view, so a rank of about 24; `BM_StepBatched` of bench/slam_step.cpp, lap 2) "
+      "against the limit of this machine for an exact update at the same size: the larger of the "
+      "**compute floor**, the multiplies and adds of the step's own rank-k update of the lower triangle "
+      "(n (n + 1) k, averaged over the timed steps) at the GEMM peak measured in the same run, and the "
+      "**memory bound**, reading and writing the lower triangle once. Every ratio is taken within one "
+      "run (the benchmarks of a run are interleaved at random), and a criterion reads met only if it "
+      "holds in every run. Nothing is tuned on these runs.")
+    w("")
+    w("**Method for the phases.** `BM_PhasePredict` runs the prediction of each step, `BM_PhaseLinearize` "
+      "the prediction and then `linearize` for every observation, and `BM_PhaseRankUpdate` the lower "
+      "rank update P -= W W^T alone at the step's n and rank. So *linearization* = Linearize - Predict "
+      "and *update without the rank update* (P H^T, S and its Cholesky factor, the gain "
+      "W = P H^T L^-T, the mean) = StepBatched - Linearize - RankUpdate. *rank update / compute floor* "
+      "says how far the one part whose flops define the floor is from the GEMM peak at that size.")
+    w("")
+    for label, path, name in (("baseline", args.baseline, "Baseline build"), ("native", args.native, "Native build")):
+        runs, gemm, context = load(path)
+        rows = analyse(runs, gemm)
+        figures[f"{label}_runs"] = f"{min(len(r['ratios']) for r in rows)}" if rows else "0"
+        section(name, label, rows, gemm, context, w, figures)
+    with open(args.out, "w", encoding="utf-8") as f:
+        f.write("\n".join(lines))
+    with open(args.figures, "w", encoding="utf-8") as f:
+        json.dump({"source": "step-limit", "command": args.command, "figures": figures}, f, indent=2, sort_keys=True)
+        f.write("\n")
+
+
+if __name__ == "__main__":
+    main()
