@@ -50,6 +50,7 @@
 #include "sylva/core/parallel.hpp"
 #include "sylva/core/types.hpp"
 #include "sylva/detail/lower_rank_update.hpp"
+#include "sylva/detail/workspace.hpp"
 
 namespace sylva::detail {
 
@@ -61,9 +62,12 @@ class BasicCompressedRegion {
   /// Enters a region whose active part is the first `a` coordinates: phi = I, psi = 0,
   /// theta = 0. `stageBegin` allocates and changes nothing; `commitBegin` cannot fail.
   void stageBegin(int a) {
-    staged_phi_.setIdentity(a, a);
-    staged_psi_.setZero(a, a);
-    staged_theta_.setZero(a);
+    resizeWorkspace(staged_phi_, a, a);
+    resizeWorkspace(staged_psi_, a, a);
+    resizeWorkspace(staged_theta_, a, 1);
+    staged_phi_.setIdentity();
+    staged_psi_.setZero();
+    staged_theta_.setZero();
   }
   void commitBegin() {
     phi_.swap(staged_phi_);
@@ -146,9 +150,9 @@ class BasicCompressedRegion {
   void stageExtend(const JRobot& J_robot) {
     const int a = activeDim();
     const auto d = J_robot.rows();
-    staged_phi_.resize(a + d, a + d);
-    staged_psi_.resize(a + d, a + d);
-    staged_theta_.resize(a + d);
+    resizeWorkspace(staged_phi_, a + d, a + d);
+    resizeWorkspace(staged_psi_, a + d, a + d);
+    resizeWorkspace(staged_theta_, a + d, 1);
     staged_phi_.setZero();
     staged_psi_.setZero();
     staged_theta_.setZero();
@@ -183,6 +187,9 @@ class BasicCompressedRegion {
     if (steps_ == 0) return;
     if (b > 0) {
       const auto V = P.block(a, 0, b, a);
+      // A factorization of the new size is made first (Eigen's resize inside compute would
+      // leave it dangling if its allocation failed).
+      if (psi_ldlt_.rows() != a) psi_ldlt_ = Eigen::LDLT<Eigen::MatrixXd>(a);
       psi_ldlt_.compute(psi_);
       auto QsqrtD = Eigen::Map<Eigen::MatrixXd>(grown(q_sqrt_d_, static_cast<Eigen::Index>(a) * a), a, a);
       QsqrtD = psi_ldlt_.matrixL();
@@ -234,7 +241,7 @@ class BasicCompressedRegion {
   Eigen::LDLT<Eigen::MatrixXd> psi_ldlt_;
 
   static double* grown(Eigen::VectorXd& buffer, Eigen::Index size) {
-    if (buffer.size() < size) buffer.resize(size);
+    growWorkspace(buffer, size);
     return buffer.data();
   }
 };

@@ -18,6 +18,7 @@
 #include "sylva/filter/compression_hooks.hpp"
 #include "sylva/filter/linearization.hpp"
 #include "sylva/filter/slot_table.hpp"
+#include "sylva/detail/workspace.hpp"
 
 namespace sylva::detail {
 
@@ -72,10 +73,10 @@ class Compression final : public CompressionHooks<Ekf> {
       for (int i = 0; i < s.dim; ++i) perm_[static_cast<std::size_t>(row++)] = s.offset + i;
     }
     if (!identity) {
-      if (scratch_.size() < n) scratch_.resize(n);
+      growWorkspace(scratch_, n);
       // The covariance is permuted into a second matrix of the storage's size, which then
       // takes the storage's place (so compression holds two while it reorders).
-      if (spare_.rows() != ekf.cov_.capacity()) spare_.resize(ekf.cov_.capacity(), ekf.cov_.capacity());
+      resizeWorkspace(spare_, ekf.cov_.capacity(), ekf.cov_.capacity());
     }
     region_.stageBegin(a);
     // From here on nothing can fail.

@@ -61,6 +61,7 @@
 #include "sylva/filter/slot_table.hpp"
 #include "sylva/filter/update_form.hpp"
 #include "sylva/noise/gaussian.hpp"
+#include "sylva/detail/workspace.hpp"
 
 namespace sylva {
 
@@ -184,7 +185,7 @@ class BatchLinearizations {
   static constexpr int kStride = M * R + M * L;
   BatchLinearizations(Eigen::VectorXd& buffer, std::vector<int>& offsets, int k)
       : offsets_(offsets) {
-    if (buffer.size() < static_cast<Eigen::Index>(k) * kStride) buffer.resize(static_cast<Eigen::Index>(k) * kStride);
+    growWorkspace(buffer, static_cast<Eigen::Index>(k) * kStride);
     offsets_.resize(static_cast<std::size_t>(k));
     data_ = buffer.data();
   }
@@ -1046,9 +1047,11 @@ class BasicEkf {
     const LandmarkSlot s = slots_[k];
     const bool active = compressed() && s.offset < compression_->activeDim();
     if (active) {
-      // The passive part's accumulators refer to this block's stored cross-covariances.
-      synchronize();
+      // The passive part's accumulators refer to this block's stored cross-covariances: a
+      // global update first. The smaller region is staged before it, so that a failed
+      // allocation in either leaves every stored number as it was.
       compression_->stageBegin(compression_->activeDim() - s.dim);
+      synchronize();
     }
     // From here on nothing can fail.
     eraseBlock(s.offset, s.dim);
@@ -1499,7 +1502,7 @@ class BasicEkf {
   Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, M>> workspaceMatrix(int dynamic_cols) {
     const int cols = M == Eigen::Dynamic ? dynamic_cols : M;
     const Eigen::Index needed = static_cast<Eigen::Index>(dim()) * cols;
-    if (workspace_a_.size() < needed) workspace_a_.resize(needed);
+    detail::growWorkspace(workspace_a_, needed);
     return Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, M>>(workspace_a_.data(), dim(), cols);
   }
 
@@ -1567,7 +1570,7 @@ class BasicEkf {
   void toInvariantIncrement(Delta& delta) {
     if constexpr (kInvariantApplies) {
       if (linearization_ != LinearizationPoint::kInvariant) return;
-      if (invariant_.size() < 2 * static_cast<Eigen::Index>(dim())) invariant_.resize(2 * static_cast<Eigen::Index>(dim()));
+      detail::growWorkspace(invariant_, 2 * static_cast<Eigen::Index>(dim()));
       auto c = invariant_.head(dim());
       c.setZero();
       const double phi = delta[Robot::kPlanarHeading];
@@ -1663,7 +1666,7 @@ class BasicEkf {
     if constexpr (kObservabilityConstrainedApplies) {
       if (linearization_ != LinearizationPoint::kObservabilityConstrained) return;
       const Eigen::Index needed = 3 * static_cast<Eigen::Index>(kGaugeDim) * dim();
-      if (gauge_.size() < needed) gauge_.resize(needed);
+      detail::growWorkspace(gauge_, needed);
       auto Nt = gaugeBlock(0);
       auto dNt = gaugeBlock(1);
       fillGaugeDirections(delta, 0.0, Nt);
@@ -1756,7 +1759,7 @@ class BasicEkf {
 
   /// Workspace for the mean increment of an update (grows only with the state).
   Eigen::Map<Eigen::VectorXd> meanIncrement() {
-    if (delta_.size() < dim()) delta_.resize(dim());
+    detail::growWorkspace(delta_, dim());
     return Eigen::Map<Eigen::VectorXd>(delta_.data(), dim());
   }
 

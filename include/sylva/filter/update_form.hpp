@@ -31,6 +31,7 @@
 
 #include "sylva/core/parallel.hpp"
 #include "sylva/detail/lower_rank_update.hpp"
+#include "sylva/detail/workspace.hpp"
 
 namespace sylva {
 namespace detail {
@@ -64,7 +65,7 @@ struct BatchWorkspace {
 
  private:
   static double* grown(Eigen::VectorXd& buffer, Eigen::Index size) {
-    if (buffer.size() < size) buffer.resize(size);
+    growWorkspace(buffer, size);
     return buffer.data();
   }
 };
