@@ -8,6 +8,11 @@
 /// its centre ahead of the robot, in m):
 ///   BM_LapTwoPlain       `Ekf<Odometry2D, Point2>`, batched updates: the first
 ///                        kStretch steps of lap 2 from the end-of-lap-1 filter
+///   BM_LapOnePlain, BM_LapOneCompressed
+///                        lap 1 whole from the empty map, where every landmark is added (the
+///                        compressed one from `setCompression(withinRadius(r, ahead))` on the
+///                        empty filter, its final synchronize() timed; state_difference against
+///                        the plain end of lap 1)
 ///   BM_LapTwoCompressed  the same filter and steps with `setCompression(withinRadius(r, ahead))`
 ///                        entered at the start of lap 2 (outside the timing), and a final
 ///                        `synchronize()` (inside it)
@@ -147,6 +152,60 @@ void BM_LapTwoCompressed(benchmark::State& state) {
   state.counters["state_difference"] = stateDifference(last, plainAfterStretch(landmarks));
 }
 
+/// Lap 1 whole, from the empty map: every landmark is added during it (the add path).
+void runLapOne(Filter& ekf, const sylva_bench::World& w, sylva_bench::StepScratch& scratch) {
+  const auto noise = w.world.odometryNoise();
+  for (int k = 0; k < w.world.lapBegin(1); ++k)
+    sylva_bench::runStep(ekf, w.steps[static_cast<std::size_t>(k)], noise, w.world.config().dt_s, sylva::Fusion::kBatched,
+                         scratch);
+}
+
+void BM_LapOnePlain(benchmark::State& state) {
+  const int landmarks = static_cast<int>(state.range(0));
+  const sylva_bench::World& w = sylva_bench::worldOf(landmarks);
+  sylva_bench::StepScratch scratch;
+  for (auto _ : state) {
+    state.PauseTiming();
+    Filter ekf = sylva_bench::makeOdometrySlam(w.world);
+    state.ResumeTiming();
+    runLapOne(ekf, w, scratch);
+    benchmark::ClobberMemory();
+  }
+  state.counters["N"] = landmarks;
+  state.counters["steps"] = w.world.lapBegin(1);
+  state.counters["per_step_us"] = benchmark::Counter(w.world.lapBegin(1) / 1e6, benchmark::Counter::kIsIterationInvariantRate |
+                                                                                    benchmark::Counter::kInvert);
+}
+
+void BM_LapOneCompressed(benchmark::State& state) {
+  const int landmarks = static_cast<int>(state.range(0));
+  const double radius = static_cast<double>(state.range(1));
+  const double ahead = static_cast<double>(state.range(2));
+  const sylva_bench::World& w = sylva_bench::worldOf(landmarks);
+  sylva_bench::StepScratch scratch;
+  Filter last = sylva_bench::makeOdometrySlam(w.world);
+  for (auto _ : state) {
+    state.PauseTiming();
+    Filter ekf = sylva_bench::makeOdometrySlam(w.world);
+    ekf.setCompression(Filter::withinRadius(radius, ahead));
+    state.ResumeTiming();
+    runLapOne(ekf, w, scratch);
+    ekf.synchronize();
+    benchmark::ClobberMemory();
+    state.PauseTiming();
+    last = std::move(ekf);
+    state.ResumeTiming();
+  }
+  state.counters["N"] = landmarks;
+  state.counters["radius_m"] = radius;
+  state.counters["ahead_m"] = ahead;
+  state.counters["steps"] = w.world.lapBegin(1);
+  state.counters["per_step_us"] = benchmark::Counter(w.world.lapBegin(1) / 1e6, benchmark::Counter::kIsIterationInvariantRate |
+                                                                                    benchmark::Counter::kInvert);
+  state.counters["global_updates"] = static_cast<double>(last.globalUpdates());
+  state.counters["state_difference"] = stateDifference(last, sylva_bench::endOfLapOne<Filter>(landmarks));
+}
+
 // ---------------------------------------------------------------- the kernel alone
 
 constexpr int kRows = 24;         // 12 range-bearing observations
@@ -257,6 +316,8 @@ void mapSizes(benchmark::internal::Benchmark* b) {
 BENCHMARK(BM_PlainRankUpdate)->Apply(mapSizes)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_CompressedLocalStep)->Apply(mapSizes)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_CompressedGlobalUpdate)->Apply(mapSizes)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_LapOnePlain)->Arg(2000)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(BM_LapOneCompressed)->Args({2000, 50, 40})->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK(BM_LapTwoPlain)->Arg(200)->Arg(2000)->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK(BM_LapTwoCompressed)
     ->Args({200, 30, 0})

@@ -15,7 +15,9 @@
 #include <sylva/filter/compression.hpp>
 #include <sylva/filter/ekf.hpp>
 #include <sylva/landmarks/point2.hpp>
+#include <sylva/landmarks/tree_xyr.hpp>
 #include <sylva/measurements/range_bearing.hpp>
+#include <sylva/measurements/range_bearing_diameter.hpp>
 #include <sylva/motion/unicycle_2d.hpp>
 #include <sylva/noise/gaussian.hpp>
 
@@ -307,6 +309,53 @@ TEST_CASE("compressed EKF: a robot that leaves its region enters a new one at th
   ekf.predict(Vec<2>(50.0, 0.0), 1.0, small);
   CHECK(ekf.globalUpdates() == before);
   CHECK(ekf.activeDim() == 3 + 2);
+}
+
+TEST_CASE("compressed EKF: a new landmark joins the active part whatever the passive part's first size",
+          "[filter][compressed]") {
+  // A new point is exchanged with a passive point (O(n) moves), or inserted before a passive
+  // tree (the passive part moves down). Either way the estimates are the plain filter's.
+  using Filter = sylva::Ekf<sylva::Unicycle2D, sylva::Point2, sylva::TreeXYR>;
+  Filter plain(Vec<3>::Zero(), Mat<3, 3>::Identity() * 1e-3);
+  const auto diameter_noise = sylva::Gaussian<3>::sigmas(Vec<3>(0.1, 0.02, 0.05));
+  for (Id id = 0; id < 6; ++id) {
+    const double range = 3.0 + 4.0 * id;
+    if (id % 2 == 0)
+      plain.add(id, sylva::InverseRangeBearing(), Vec<2>(range, 0.1 * id), kSensorNoise);
+    else
+      plain.add(id, sylva::InverseRangeBearingDiameter(), Vec<3>(range, -0.1 * id, 0.4), diameter_noise);
+  }
+  Filter compressed = plain;
+  compressed.setCompression(Filter::withinRadius(6.0));  // landmark 0 (3 m) only
+  const auto both = [&](auto&& f) {
+    f(plain);
+    f(compressed);
+  };
+  both([](Filter& f) { f.predict(Vec<2>(0.5, 0.05), 1.0, kControlNoise); });
+  REQUIRE(compressed.activeDim() == 3 + 2);
+  REQUIRE(compressed.slots()[1].dim == 3);  // the first passive landmark is a tree
+  both([](Filter& f) { f.add(10, sylva::InverseRangeBearing(), Vec<2>(2.0, 0.3), kSensorNoise); });  // inserted
+  CHECK(compressed.activeDim() == 3 + 2 + 2);
+  both([](Filter& f) { f.add(11, sylva::InverseRangeBearingDiameter(), Vec<3>(2.5, -0.2, 0.3), sylva::Gaussian<3>::sigmas(Vec<3>(0.1, 0.02, 0.05))); });  // exchanged
+  CHECK(compressed.activeDim() == 3 + 2 + 2 + 3);
+  both([](Filter& f) { f.update(sylva::RangeBearing(), 10, Vec<2>(1.6, 0.32), kSensorNoise); });
+  both([](Filter& f) { f.predict(Vec<2>(0.5, 0.05), 1.0, kControlNoise); });
+  CHECK(compressed.globalUpdates() == 0);
+  compressed.synchronize();
+  for (const sylva::LandmarkSlot& s : plain.slots()) {
+    INFO("landmark " << s.id);
+    CHECK(compressed.slot(s.id).dim == s.dim);
+    const auto same = [&](auto tag) {
+      using L = typename decltype(tag)::type;
+      CHECK((compressed.landmarkMean<L>(s.id) - plain.landmarkMean<L>(s.id)).cwiseAbs().maxCoeff() <= 1e-12);
+      CHECK((compressed.landmarkCovariance<L>(s.id) - plain.landmarkCovariance<L>(s.id)).cwiseAbs().maxCoeff() <= 1e-12);
+      CHECK((compressed.robotLandmarkCovariance<L>(s.id) - plain.robotLandmarkCovariance<L>(s.id)).cwiseAbs().maxCoeff() <= 1e-12);
+    };
+    plain.visit(s.id, same);
+  }
+  CHECK((compressed.robotCovariance() - plain.robotCovariance()).cwiseAbs().maxCoeff() <= 1e-12);
+  CHECK(std::abs(compressed.covariance().trace() - plain.covariance().trace()) <= 1e-12);
+  CHECK(std::abs(compressed.covariance().squaredNorm() - plain.covariance().squaredNorm()) <= 1e-12);
 }
 
 TEST_CASE("compressed EKF: refused input leaves the filter as it was", "[filter][compressed][errors]") {

@@ -969,8 +969,9 @@ class BasicEkf {
   /// Adds landmark `id` from its first observation `z` through the inverse model
   /// (augmentation, eq. 2.33-2.39): the new block's cross-covariances are J_l_x P_r* and its
   /// covariance J_l_x P_rr J_l_x^T + J_l_z R J_l_z^T. O(n). With the compressed EKF the new
-  /// landmark joins the active part, at its end: O(a) arithmetic, and the passive part's
-  /// storage moves down by its rows (O(n^2) memory moves, no flops).
+  /// landmark joins the active part, at its end: O(a) arithmetic, and O(n) moves when the
+  /// first passive landmark has its size (the two blocks are exchanged), else O(n^2) (the
+  /// passive part's storage moves down by its rows).
   template <typename InverseModel>
   void add(Id id,
            const InverseModel& inverse,
@@ -1017,26 +1018,51 @@ class BasicEkf {
     // index (the last thing that can fail).
     slots_.reserveOne();
     ensureCapacity(dim() + L);
-    const int off = activeDim();
+    const int off = activeDim();  // where the new block ends up
+    int at = off;                 // where it is written
+    // Compressed: the new landmark joins the active part, at its end. If the first passive
+    // landmark has its size, the new block is written at the end of the state and the two
+    // are exchanged (O(n) moves); otherwise the passive part moves down to make room (O(n^2)).
+    std::size_t exchange_with = 0;
+    bool exchange = false;
     if (compressed()) {
       compression_->stageExtend(J_l_x.data(), L);
-      slots_.insertAt(activeSlotCount(), LandmarkSlot{id, typeIndexOf<Landmark>(), off, L});
-      // From here on nothing can fail.
-      insertRows(off, L);
+      exchange_with = activeSlotCount();
+      exchange = exchange_with < slots_.slots().size() && slots_[exchange_with].dim == L;
+      if (exchange) {
+        at = dim();
+        slots_.append(LandmarkSlot{id, typeIndexOf<Landmark>(), at, L});
+        // From here on nothing can fail.
+        cov_.setDim(dim() + L);
+        cov_.stored().block(at, off, L, at - off).setZero();  // against the passive part: zero
+      } else {
+        slots_.insertAt(exchange_with, LandmarkSlot{id, typeIndexOf<Landmark>(), off, L});
+        // From here on nothing can fail.
+        insertRows(off, L);
+      }
       compression_->commitExtend();
     } else {
       slots_.append(LandmarkSlot{id, typeIndexOf<Landmark>(), off, L});
       cov_.setDim(dim() + L);
     }
     // From here on nothing can fail.
-    mean_.template segment<L>(off) = l;
-    detail::normalize<Landmark>(mean_.template segment<L>(off));
-    first_.template segment<L>(off) = mean_.template segment<L>(off);
-    ideal_.template segment<L>(off).setConstant(std::numeric_limits<double>::quiet_NaN());
+    mean_.template segment<L>(at) = l;
+    detail::normalize<Landmark>(mean_.template segment<L>(at));
+    first_.template segment<L>(at) = mean_.template segment<L>(at);
+    ideal_.template segment<L>(at).setConstant(std::numeric_limits<double>::quiet_NaN());
     // New rows (lower storage): [J_l_x P_rr, J_l_x P_rm]    (eq. 2.39, bottom row)
-    cov_.stored().template block<L, kRobotDim>(off, 0) = J_P_rr;
-    if (m > 0) cov_.stored().block(off, kRobotDim, L, m) = J_P_rm;
-    cov_.stored().template block<L, L>(off, off) = P_ll;
+    cov_.stored().template block<L, kRobotDim>(at, 0) = J_P_rr;
+    if (m > 0) cov_.stored().block(at, kRobotDim, L, m) = J_P_rm;
+    cov_.stored().template block<L, L>(at, at) = P_ll;
+    if (exchange) {
+      for (Eigen::VectorXd* v : {&mean_, &first_, &ideal_}) {
+        auto block = v->template segment<L>(off);
+        auto other = v->template segment<L>(at);
+        block.swap(other);
+      }
+      cov_.swapBlocks(off, at, L);
+      slots_.swapPositions(exchange_with, slots_.slots().size() - 1);
+    }
   }
 
   /// Removes landmark `id`: its rows and columns leave the state. O(n^2) (moves). With the

@@ -112,6 +112,21 @@ class LowerCovariance {
     n_ += d;
   }
 
+  /// Exchanges the d rows and columns at i with the d at j (i + d <= j): P <- Pi P Pi^T for
+  /// the permutation that swaps the two blocks. O(n d) moves; cannot fail.
+  void swapBlocks(int i, int j, int d) {
+    const auto at = [this](int r, int c) -> double& { return r >= c ? m_(r, c) : m_(c, r); };
+    for (int k = 0; k < n_; ++k) {
+      if ((k >= i && k < i + d) || (k >= j && k < j + d)) continue;
+      for (int t = 0; t < d; ++t) std::swap(at(k, i + t), at(k, j + t));
+    }
+    for (int t = 0; t < d; ++t)
+      for (int s = t; s < d; ++s) std::swap(m_(i + s, i + t), m_(j + s, j + t));
+    // The block between the two, stored at rows j.., columns i.., becomes its transpose.
+    for (int t = 0; t < d; ++t)
+      for (int s = t + 1; s < d; ++s) std::swap(m_(j + s, i + t), m_(j + t, i + s));
+  }
+
   /// P <- P(perm, perm): row and column i of the result are perm[i] of P (perm: a
   /// permutation of 0..n-1). The result is written into `spare`, a matrix of the storage's
   /// size, which then becomes the storage (the old storage is handed back in `spare`), so

@@ -92,6 +92,15 @@ class SlotTable {
     }
   }
 
+  /// Exchanges slots a and b, which have the same size and whose blocks the filter has
+  /// exchanged: each takes the other's place and offset. Allocates nothing.
+  void swapPositions(std::size_t a, std::size_t b) {
+    std::swap(slots_[a].offset, slots_[b].offset);
+    std::swap(slots_[a], slots_[b]);
+    index_[slots_[a].id] = a;  // the entries exist: no allocation
+    index_[slots_[b].id] = b;
+  }
+
   /// Lays the slots out in the order of `order` (the same slots, each once), from offset
   /// `first`. Allocates nothing (`order` has the table's size).
   void reorder(const std::vector<LandmarkSlot>& order, int first) {
