@@ -22,7 +22,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from bench_report import single_runs  # noqa: E402  (the JSON reader the reports share)
 
 TARGET = 2.0  # issue 19: the step at most 2.0x the machine limit at every N, in both builds
-PHASE_SIZES = (50, 200, 1000)
+PHASE_SIZES = (50, 200, 1000, 2000)  # the issue asks for 50, 200 and 1000; 2000 shows the largest map
 
 
 def load(path):
@@ -124,9 +124,12 @@ def section(name, label, rows, gemm, context, w, figures):
             continue
         p = r["phases"]
         share = lambda s: f"{us(s)} ({100 * s / r['step']:.0f}%)"  # noqa: E731
-        w(f"| {r['N']} | {us(r['step'])} | {share(p['predict'])} | {share(p['linearize'])} | {share(p['rest'])} | "
+        # The parts are timed separately; where the rank update alone took longer than the
+        # whole step, the difference says nothing but that.
+        rest = share(p["rest"]) if p["rest"] > 0 else "none left: the rank update alone took longer than the step"
+        w(f"| {r['N']} | {us(r['step'])} | {share(p['predict'])} | {share(p['linearize'])} | {rest} | "
           f"{share(p['rank'])} | {r['rank_over_floor']:.2f} |")
-        figures[f"{label}_rest_share_{r['N']}"] = f"{100 * p['rest'] / r['step']:.0f}"
+        figures[f"{label}_rest_share_{r['N']}"] = f"{100 * max(0.0, p['rest']) / r['step']:.0f}"
         figures[f"{label}_rank_over_floor_{r['N']}"] = f"{r['rank_over_floor']:.2f}"
     w("")
 
