@@ -103,55 +103,6 @@ double stateDifference(const Filter& compressed, const Filter& plain) {
   return std::max(relativeDifference(x_ordered, plain.mean()), relativeDifference(P_ordered, plain.covariance()));
 }
 
-void BM_LapTwoPlain(benchmark::State& state) {
-  const int landmarks = static_cast<int>(state.range(0));
-  const sylva_bench::World& w = sylva_bench::worldOf(landmarks);
-  const Filter& start = sylva_bench::endOfLapOne<Filter>(landmarks);
-  sylva_bench::StepScratch scratch;
-  for (auto _ : state) {
-    state.PauseTiming();
-    Filter ekf = start;
-    state.ResumeTiming();
-    runStretch(ekf, w, scratch);
-    benchmark::ClobberMemory();
-  }
-  state.counters["N"] = landmarks;
-  state.counters["steps"] = stretchOf(w);
-  state.counters["per_step_us"] =
-      benchmark::Counter(stretchOf(w) / 1e6, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
-}
-
-void BM_LapTwoCompressed(benchmark::State& state) {
-  const int landmarks = static_cast<int>(state.range(0));
-  const double radius = static_cast<double>(state.range(1));
-  const double ahead = static_cast<double>(state.range(2));
-  const sylva_bench::World& w = sylva_bench::worldOf(landmarks);
-  const Filter& start = sylva_bench::endOfLapOne<Filter>(landmarks);
-  sylva_bench::StepScratch scratch;
-  Filter last = start;
-  for (auto _ : state) {
-    state.PauseTiming();
-    Filter ekf = start;
-    ekf.setCompression(Filter::withinRadius(radius, ahead));
-    state.ResumeTiming();
-    runStretch(ekf, w, scratch);
-    ekf.synchronize();
-    benchmark::ClobberMemory();
-    state.PauseTiming();
-    last = std::move(ekf);
-    state.ResumeTiming();
-  }
-  state.counters["N"] = landmarks;
-  state.counters["radius_m"] = radius;
-  state.counters["ahead_m"] = ahead;
-  state.counters["steps"] = stretchOf(w);
-  state.counters["per_step_us"] =
-      benchmark::Counter(stretchOf(w) / 1e6, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
-  state.counters["global_updates"] = static_cast<double>(last.globalUpdates());
-  state.counters["active_dim"] = last.activeDim();
-  state.counters["state_difference"] = stateDifference(last, plainAfterStretch(landmarks));
-}
-
 /// Lap 1 whole, from the empty map: every landmark is added during it (the add path).
 void runLapOne(Filter& ekf, const sylva_bench::World& w, sylva_bench::StepScratch& scratch) {
   const auto noise = w.world.odometryNoise();
@@ -160,51 +111,52 @@ void runLapOne(Filter& ekf, const sylva_bench::World& w, sylva_bench::StepScratc
                          scratch);
 }
 
-void BM_LapOnePlain(benchmark::State& state) {
-  const int landmarks = static_cast<int>(state.range(0));
-  const sylva_bench::World& w = sylva_bench::worldOf(landmarks);
-  sylva_bench::StepScratch scratch;
-  for (auto _ : state) {
-    state.PauseTiming();
-    Filter ekf = sylva_bench::makeOdometrySlam(w.world);
-    state.ResumeTiming();
-    runLapOne(ekf, w, scratch);
-    benchmark::ClobberMemory();
-  }
-  state.counters["N"] = landmarks;
-  state.counters["steps"] = w.world.lapBegin(1);
-  state.counters["per_step_us"] = benchmark::Counter(w.world.lapBegin(1) / 1e6, benchmark::Counter::kIsIterationInvariantRate |
-                                                                                    benchmark::Counter::kInvert);
-}
+enum class Lap { kOne, kTwo };
 
-void BM_LapOneCompressed(benchmark::State& state) {
+/// One timed run per iteration: lap 1 from the empty map, or the stretch of lap 2 from the
+/// end of lap 1; plain, or (with a region's radius and centre ahead as arguments 1 and 2)
+/// compressed, its region entered outside the timing and its final synchronize() inside it.
+void timeLap(benchmark::State& state, Lap lap, bool compressed) {
   const int landmarks = static_cast<int>(state.range(0));
-  const double radius = static_cast<double>(state.range(1));
-  const double ahead = static_cast<double>(state.range(2));
+  const double radius = compressed ? static_cast<double>(state.range(1)) : 0.0;
+  const double ahead = compressed ? static_cast<double>(state.range(2)) : 0.0;
   const sylva_bench::World& w = sylva_bench::worldOf(landmarks);
+  const Filter start = lap == Lap::kOne ? sylva_bench::makeOdometrySlam(w.world) : sylva_bench::endOfLapOne<Filter>(landmarks);
+  const int steps = lap == Lap::kOne ? w.world.lapBegin(1) : stretchOf(w);
   sylva_bench::StepScratch scratch;
-  Filter last = sylva_bench::makeOdometrySlam(w.world);
+  Filter last = start;
   for (auto _ : state) {
     state.PauseTiming();
-    Filter ekf = sylva_bench::makeOdometrySlam(w.world);
-    ekf.setCompression(Filter::withinRadius(radius, ahead));
+    Filter ekf = start;
+    if (compressed) ekf.setCompression(Filter::withinRadius(radius, ahead));
     state.ResumeTiming();
-    runLapOne(ekf, w, scratch);
-    ekf.synchronize();
+    if (lap == Lap::kOne)
+      runLapOne(ekf, w, scratch);
+    else
+      runStretch(ekf, w, scratch);
+    ekf.synchronize();  // a no-op for the plain filter
     benchmark::ClobberMemory();
     state.PauseTiming();
     last = std::move(ekf);
     state.ResumeTiming();
   }
   state.counters["N"] = landmarks;
+  state.counters["steps"] = steps;
+  state.counters["per_step_us"] =
+      benchmark::Counter(steps / 1e6, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+  if (!compressed) return;
   state.counters["radius_m"] = radius;
   state.counters["ahead_m"] = ahead;
-  state.counters["steps"] = w.world.lapBegin(1);
-  state.counters["per_step_us"] = benchmark::Counter(w.world.lapBegin(1) / 1e6, benchmark::Counter::kIsIterationInvariantRate |
-                                                                                    benchmark::Counter::kInvert);
   state.counters["global_updates"] = static_cast<double>(last.globalUpdates());
-  state.counters["state_difference"] = stateDifference(last, sylva_bench::endOfLapOne<Filter>(landmarks));
+  state.counters["active_dim"] = last.activeDim();
+  const Filter& plain = lap == Lap::kOne ? sylva_bench::endOfLapOne<Filter>(landmarks) : plainAfterStretch(landmarks);
+  state.counters["state_difference"] = stateDifference(last, plain);
 }
+
+void BM_LapOnePlain(benchmark::State& state) { timeLap(state, Lap::kOne, false); }
+void BM_LapOneCompressed(benchmark::State& state) { timeLap(state, Lap::kOne, true); }
+void BM_LapTwoPlain(benchmark::State& state) { timeLap(state, Lap::kTwo, false); }
+void BM_LapTwoCompressed(benchmark::State& state) { timeLap(state, Lap::kTwo, true); }
 
 // ---------------------------------------------------------------- the kernel alone
 

@@ -60,15 +60,15 @@ using sylva_bench::endOfLapOne;
 using sylva_bench::World;
 using sylva_bench::worldOf;
 
-template <typename Filter>
-void timeSteps(benchmark::State& state, sylva::Fusion fusion, sylva::Parallel* parallel = nullptr) {
+/// Times `body(ekf, step, scratch)` on the timed steps of lap 2, restarting from a copy of
+/// the end-of-lap-1 filter every K iterations (outside the timing).
+template <typename Filter, typename Body>
+void timeLapTwo(benchmark::State& state, sylva::Parallel* parallel, const Body& body) {
   const int landmarks = static_cast<int>(state.range(0));
   const World& w = worldOf(landmarks);
   const Filter& start = endOfLapOne<Filter>(landmarks);
   const int first = w.world.lapBegin(1);
   const int timed = std::min(kMaxTimedSteps, w.world.stepsPerLap());
-  const auto noise = w.world.odometryNoise();
-  const double dt = w.world.config().dt_s;
   Filter ekf = start;
   ekf.setParallel(parallel);
   sylva_bench::StepScratch scratch;
@@ -83,7 +83,7 @@ void timeSteps(benchmark::State& state, sylva::Fusion fusion, sylva::Parallel* p
       state.ResumeTiming();
     }
     const SylvaStep& step = w.steps[static_cast<std::size_t>(first + k)];
-    sylva_bench::runStep(ekf, step, noise, dt, fusion, scratch);
+    body(ekf, step, scratch);
     observations += static_cast<long>(step.observations.size());
     ++k;
     benchmark::ClobberMemory();
@@ -92,6 +92,16 @@ void timeSteps(benchmark::State& state, sylva::Fusion fusion, sylva::Parallel* p
   state.counters["n"] = start.dim();
   state.counters["observations_per_step"] =
       static_cast<double>(observations) / static_cast<double>(std::max<benchmark::IterationCount>(1, state.iterations()));
+}
+
+template <typename Filter>
+void timeSteps(benchmark::State& state, sylva::Fusion fusion, sylva::Parallel* parallel = nullptr) {
+  const World& w = worldOf(static_cast<int>(state.range(0)));
+  const auto noise = w.world.odometryNoise();
+  const double dt = w.world.config().dt_s;
+  timeLapTwo<Filter>(state, parallel, [&](Filter& ekf, const SylvaStep& step, sylva_bench::StepScratch& scratch) {
+    sylva_bench::runStep(ekf, step, noise, dt, fusion, scratch);
+  });
 }
 
 void BM_StepBatched(benchmark::State& state) { timeSteps<PointFilter>(state, sylva::Fusion::kBatched); }
@@ -122,27 +132,13 @@ void BM_StepBatchedWallTwoThreads(benchmark::State& state) {
 enum class Prefix { kPredict, kLinearize };
 
 void timePrefix(benchmark::State& state, Prefix prefix) {
-  const int landmarks = static_cast<int>(state.range(0));
-  const World& w = worldOf(landmarks);
-  const PointFilter& start = endOfLapOne<PointFilter>(landmarks);
-  const int first = w.world.lapBegin(1);
-  const int timed = std::min(kMaxTimedSteps, w.world.stepsPerLap());
+  const World& w = worldOf(static_cast<int>(state.range(0)));
   const auto noise = w.world.odometryNoise();
   const double dt = w.world.config().dt_s;
-  PointFilter ekf = start;
-  sylva_bench::StepScratch scratch;
   std::vector<sylva::Linearization<sylva::RangeBearing, PointFilter::kRobotDim>> lins;
   lins.reserve(64);
   const sylva::RangeBearing model;
-  int k = 0;
-  for (auto _ : state) {
-    if (k == timed) {
-      state.PauseTiming();
-      ekf = start;
-      k = 0;
-      state.ResumeTiming();
-    }
-    const SylvaStep& step = w.steps[static_cast<std::size_t>(first + k)];
+  timeLapTwo<PointFilter>(state, nullptr, [&](PointFilter& ekf, const SylvaStep& step, sylva_bench::StepScratch& scratch) {
     sylva_bench::predictStep(ekf, step, noise, dt);
     sylva_bench::splitObservations(ekf, step, scratch);
     if (prefix == Prefix::kLinearize) {
@@ -150,11 +146,7 @@ void timePrefix(benchmark::State& state, Prefix prefix) {
       for (const auto& obs : scratch.known) lins.push_back(ekf.linearize(model, obs.id));
       benchmark::DoNotOptimize(lins.data());
     }
-    ++k;
-    benchmark::ClobberMemory();
-  }
-  state.counters["N"] = landmarks;
-  state.counters["n"] = start.dim();
+  });
 }
 void BM_PhasePredict(benchmark::State& state) { timePrefix(state, Prefix::kPredict); }
 void BM_PhaseLinearize(benchmark::State& state) { timePrefix(state, Prefix::kLinearize); }

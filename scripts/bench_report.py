@@ -45,6 +45,15 @@ def state_dim(landmarks):
     return ROBOT_DIM + LANDMARK_DIM * landmarks
 
 
+def write_page(out, lines, figures_path, source, command, figures):
+    """Writes a generated page (its lines) and its figures file (docs_figures.py's format)."""
+    with open(out, "w", encoding="utf-8") as f:
+        f.write("\n".join(lines))
+    with open(figures_path, "w", encoding="utf-8") as f:
+        json.dump({"source": source, "command": command, "figures": figures}, f, indent=2, sort_keys=True)
+        f.write("\n")
+
+
 def single_runs(data):
     """(family, numeric arguments, entry, CPU seconds) for every single run in a Google
     Benchmark JSON (aggregates and errors left out)."""

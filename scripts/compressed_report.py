@@ -18,7 +18,7 @@ import sys
 from collections import defaultdict
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from bench_report import single_runs  # noqa: E402  (the JSON reader the reports share)
+from bench_report import single_runs, write_page  # noqa: E402  (what the reports share)
 
 TARGET_N = 2000
 TARGET_RATIO = 0.25  # issue 19: amortized compressed step <= 0.25x the plain batched step
@@ -163,11 +163,7 @@ def main():
     w("Steps per run: " + ", ".join(sorted({f"{runs[k][0]['steps']} (N = {k[1]})" for k in runs})) + ".")
     w("")
     victoria_park_section(args.victoria_park, w, figures)
-    with open(args.out, "w", encoding="utf-8") as f:
-        f.write("\n".join(lines))
-    with open(args.figures, "w", encoding="utf-8") as f:
-        json.dump({"source": "compressed-ekf", "command": args.command, "figures": figures}, f, indent=2, sort_keys=True)
-        f.write("\n")
+    write_page(args.out, lines, args.figures, "compressed-ekf", args.command, figures)
 
 
 if __name__ == "__main__":

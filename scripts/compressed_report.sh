@@ -17,13 +17,12 @@ data_dir="${DATA_DIR:-${root}/../shared/data}"
 
 # shellcheck source=lib/install_packages.sh
 source "${root}/scripts/lib/install_packages.sh"
+# shellcheck source=lib/prefer_clang.sh
+source "${root}/scripts/lib/prefer_clang.sh"
 sylva_install_packages build-essential cmake ninja-build libeigen3-dev libbenchmark-dev libcli11-dev \
   nlohmann-json3-dev libboost-math-dev python3
 
-# clang++ when installed, as scripts/run_benchmarks.sh (CXX picks another at the first configure).
-if [[ ! -f "${build_dir}/CMakeCache.txt" && -z "${CXX:-}" ]] && command -v clang++ > /dev/null; then
-  export CXX=clang++
-fi
+sylva_prefer_clang "${build_dir}"
 cmake -S "${root}" -B "${build_dir}" -G Ninja -DCMAKE_BUILD_TYPE=Release \
   -DSYLVA_BUILD_BENCHMARKS=ON -DSYLVA_BUILD_TESTS=OFF -DSYLVA_BUILD_EXAMPLES=ON
 cmake --build "${build_dir}" -j "${JOBS:-2}" --target bench_compressed_ekf victoria_park

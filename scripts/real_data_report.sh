@@ -31,12 +31,12 @@ done
 
 # shellcheck source=lib/install_packages.sh
 source "${root}/scripts/lib/install_packages.sh"
+# shellcheck source=lib/prefer_clang.sh
+source "${root}/scripts/lib/prefer_clang.sh"
 sylva_install_packages build-essential cmake clang libeigen3-dev libcli11-dev nlohmann-json3-dev \
   libboost-math-dev python3
 
-if [[ ! -f "${build_dir}/CMakeCache.txt" && -z "${CXX:-}" ]] && command -v clang++ > /dev/null; then
-  export CXX=clang++
-fi
+sylva_prefer_clang "${build_dir}"
 cmake -S "${root}" -B "${build_dir}" -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS="-march=native" \
   -DSYLVA_BUILD_TESTS=OFF -DSYLVA_BUILD_BENCHMARKS=OFF -DSYLVA_BUILD_EXAMPLES=ON
 cmake --build "${build_dir}" -j "${jobs}" --target victoria_park utias

@@ -32,6 +32,8 @@ jobs="${JOBS:-2}"
 
 # shellcheck source=lib/install_packages.sh
 source "${root}/scripts/lib/install_packages.sh"
+# shellcheck source=lib/prefer_clang.sh
+source "${root}/scripts/lib/prefer_clang.sh"
 sylva_install_packages build-essential cmake ninja-build clang libeigen3-dev libbenchmark-dev \
   libcli11-dev nlohmann-json3-dev catch2 libboost-math-dev gnuplot-nox python3
 
@@ -41,9 +43,7 @@ if [[ "${SKIP_BUILD_TIME:-0}" != 1 ]]; then
   CXX=clang++ bash "${root}/scripts/measure_build_time.sh" "${root}/build/build-times-clang.json"
 fi
 
-if [[ ! -f "${build_dir}/CMakeCache.txt" && -z "${CXX:-}" ]] && command -v clang++ > /dev/null; then
-  export CXX=clang++
-fi
+sylva_prefer_clang "${build_dir}"
 cmake -S "${root}" -B "${build_dir}" -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS="-march=native" \
   -DSYLVA_BUILD_BENCHMARKS=ON -DSYLVA_BUILD_TESTS=OFF -DSYLVA_BUILD_EXAMPLES=OFF
 cmake --build "${build_dir}" -j "${jobs}" --target bench_slam_step bench_forest_slam bench_ekf_update

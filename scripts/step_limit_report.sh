@@ -19,14 +19,14 @@ repetitions="${REPETITIONS:-3}"
 
 # shellcheck source=lib/install_packages.sh
 source "${root}/scripts/lib/install_packages.sh"
+# shellcheck source=lib/prefer_clang.sh
+source "${root}/scripts/lib/prefer_clang.sh"
 sylva_install_packages build-essential cmake ninja-build libeigen3-dev libbenchmark-dev python3
 
 filter='^BM_(StepBatched|PhasePredict|PhaseLinearize|PhaseRankUpdate|BoundLowerReadWrite)/|^BM_GemmPeak'
 for build in baseline native; do
   if [[ "${build}" == baseline ]]; then dir="${baseline_dir}"; flags=""; else dir="${native_dir}"; flags="-march=native"; fi
-  if [[ ! -f "${dir}/CMakeCache.txt" && -z "${CXX:-}" ]] && command -v clang++ > /dev/null; then
-    export CXX=clang++
-  fi
+  sylva_prefer_clang "${dir}"
   cmake -S "${root}" -B "${dir}" -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS="${flags}" \
     -DSYLVA_BUILD_BENCHMARKS=ON -DSYLVA_BUILD_TESTS=OFF -DSYLVA_BUILD_EXAMPLES=OFF
   cmake --build "${dir}" -j "${JOBS:-2}" --target bench_slam_step
