@@ -23,7 +23,7 @@ sylva_install_packages build-essential cmake ninja-build libeigen3-dev libbenchm
   nlohmann-json3-dev libboost-math-dev python3
 
 sylva_prefer_clang "${build_dir}"
-cmake -S "${root}" -B "${build_dir}" -G Ninja -DCMAKE_BUILD_TYPE=Release \
+cmake -S "${root}" -B "${build_dir}" -G Ninja -DCMAKE_BUILD_TYPE=Release -DSYLVA_NATIVE=OFF \
   -DSYLVA_BUILD_BENCHMARKS=ON -DSYLVA_BUILD_TESTS=OFF -DSYLVA_BUILD_EXAMPLES=ON
 cmake --build "${build_dir}" -j "${JOBS:-2}" --target bench_compressed_ekf victoria_park
 "${build_dir}/bench/bench_compressed_ekf" --benchmark_filter='LapTwo' \

@@ -30,7 +30,7 @@ source "${root}/scripts/lib/prefer_clang.sh"
 sylva_install_packages build-essential cmake libeigen3-dev libcli11-dev nlohmann-json3-dev libboost-math-dev python3
 
 sylva_prefer_clang "${build_dir}"
-cmake -S "${root}" -B "${build_dir}" -DCMAKE_BUILD_TYPE=Release \
+cmake -S "${root}" -B "${build_dir}" -DCMAKE_BUILD_TYPE=Release -DSYLVA_NATIVE=OFF \
   -DSYLVA_BUILD_TESTS=OFF -DSYLVA_BUILD_BENCHMARKS=OFF -DSYLVA_BUILD_EXAMPLES=ON
 cmake --build "${build_dir}" -j "${jobs}" --target consistency
 

@@ -19,7 +19,7 @@ command -v ninja > /dev/null || { echo "measure_build_time.sh: needs ninja (apt-
 
 tmp="$(mktemp -d "${TMPDIR:-/tmp}/sylva-build-time.XXXXXX")"
 trap 'rm -rf "$tmp"' EXIT
-cmake -S "$repo" -B "$tmp" -G Ninja -DCMAKE_BUILD_TYPE=Release \
+cmake -S "$repo" -B "$tmp" -G Ninja -DCMAKE_BUILD_TYPE=Release -DSYLVA_NATIVE=OFF \
   -DSYLVA_BUILD_TESTS=ON -DSYLVA_BUILD_EXAMPLES=ON -DSYLVA_BUILD_BENCHMARKS=OFF > "$tmp/configure.log"
 compiler="$(sed -n 's/^CMAKE_CXX_COMPILER:[A-Z]*=//p' "$tmp/CMakeCache.txt")"
 version="$("$compiler" --version | head -n 1)"

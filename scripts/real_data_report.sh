@@ -37,7 +37,7 @@ sylva_install_packages build-essential cmake clang libeigen3-dev libcli11-dev nl
   libboost-math-dev python3
 
 sylva_prefer_clang "${build_dir}"
-cmake -S "${root}" -B "${build_dir}" -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS="-march=native" \
+cmake -S "${root}" -B "${build_dir}" -DCMAKE_BUILD_TYPE=Release -DSYLVA_NATIVE=ON \
   -DSYLVA_BUILD_TESTS=OFF -DSYLVA_BUILD_BENCHMARKS=OFF -DSYLVA_BUILD_EXAMPLES=ON
 cmake --build "${build_dir}" -j "${jobs}" --target victoria_park utias
 

@@ -44,7 +44,7 @@ source "$repo/scripts/lib/install_packages.sh"
 if [[ -z "$bin_dir" ]]; then
   sylva_install_packages build-essential cmake libeigen3-dev libcli11-dev nlohmann-json3-dev libboost-math-dev libbenchmark-dev python3
   build="${SYLVA_BUILD_ROOT:-$repo/build}/docs"
-  cmake -S "$repo" -B "$build" -DCMAKE_BUILD_TYPE=Release \
+  cmake -S "$repo" -B "$build" -DCMAKE_BUILD_TYPE=Release -DSYLVA_NATIVE=OFF \
     ${SYLVA_CXX:+-DCMAKE_CXX_COMPILER="$SYLVA_CXX"} \
     -DSYLVA_BUILD_TESTS=OFF -DSYLVA_BUILD_BENCHMARKS=ON -DSYLVA_BUILD_EXAMPLES=ON >&2
   targets=(--target range_bearing_slam parking laser_camera_slam moving_objects forest_slam bench_slam_step)

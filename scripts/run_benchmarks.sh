@@ -44,7 +44,7 @@ if [[ "${SKIP_BUILD_TIME:-0}" != 1 ]]; then
 fi
 
 sylva_prefer_clang "${build_dir}"
-cmake -S "${root}" -B "${build_dir}" -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS="-march=native" \
+cmake -S "${root}" -B "${build_dir}" -DCMAKE_BUILD_TYPE=Release -DSYLVA_NATIVE=ON \
   -DSYLVA_BUILD_BENCHMARKS=ON -DSYLVA_BUILD_TESTS=OFF -DSYLVA_BUILD_EXAMPLES=OFF
 cmake --build "${build_dir}" -j "${jobs}" --target bench_slam_step bench_forest_slam bench_ekf_update
 

@@ -8,7 +8,7 @@ set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build_dir="${1:-${root}/build-bench}"
 repetitions="${REPETITIONS:-5}"
-cmake -S "${root}" -B "${build_dir}" -DCMAKE_BUILD_TYPE=Release \
+cmake -S "${root}" -B "${build_dir}" -DCMAKE_BUILD_TYPE=Release -DSYLVA_NATIVE=OFF \
   -DSYLVA_BUILD_BENCHMARKS=ON -DSYLVA_BUILD_TESTS=OFF -DSYLVA_BUILD_EXAMPLES=OFF >/dev/null
 cmake --build "${build_dir}" --target bench_forest_slam -j "${JOBS:-1}"
 json="${build_dir}/forest_benchmark.json"

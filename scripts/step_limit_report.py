@@ -134,6 +134,33 @@ def section(name, label, rows, gemm, context, w, figures):
     w("")
 
 
+def gain_section(steps, w, figures):
+    """What -march=native gains: the baseline step over the native one at each N."""
+    sizes = sorted(set(steps["baseline"]) & set(steps["native"]))
+    if not sizes:
+        return
+    w("## What -march=native gains")
+    w("")
+    w("The baseline build's step over the native build's, at each N: the ratio of the medians, and "
+      "in brackets the least and the most it can be from the runs (the slowest native run against the "
+      "fastest baseline run, and the reverse). The two builds are two programs, run one after the "
+      "other, so these ratios are not taken within one run as the ones above are; the brackets "
+      "hold whatever the machine did between them. docs/fast-build.md quotes them.")
+    w("")
+    w("| N | baseline step | native step | baseline / native: median [range] |")
+    w("|---|---|---|---|")
+    for n in sizes:
+        base, native = steps["baseline"][n], steps["native"][n]
+        gain = statistics.median(base) / statistics.median(native)
+        low, high = min(base) / max(native), max(base) / min(native)
+        w(f"| {n} | {us(statistics.median(base))} | {us(statistics.median(native))} | "
+          f"{gain:.2f} [{low:.2f}, {high:.2f}] |")
+        figures[f"native_gain_{n}"] = f"{gain:.2f}"
+        figures[f"native_gain_low_{n}"] = f"{low:.2f}"
+        figures[f"native_gain_high_{n}"] = f"{high:.2f}"
+    w("")
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__)
     parser.add_argument("--baseline", required=True, help="bench_slam_step JSON of the baseline build")
@@ -166,11 +193,15 @@ def main():
       "W = P H^T L^-T, the mean) = StepBatched - Linearize - RankUpdate. *rank update / compute floor* "
       "says how far the one part whose flops define the floor is from the GEMM peak at that size.")
     w("")
+    steps = {}
     for label, path, name in (("baseline", args.baseline, "Baseline build"), ("native", args.native, "Native build")):
         runs, gemm, context = load(path)
         rows = analyse(runs, gemm)
         figures[f"{label}_runs"] = f"{min(len(r['ratios']) for r in rows)}" if rows else "0"
         section(name, label, rows, gemm, context, w, figures)
+        steps[label] = {n: [e["seconds"] for e in runs[("StepBatched", n)].values()]
+                        for (family, n) in runs if family == "StepBatched"}
+    gain_section(steps, w, figures)
     write_page(args.out, lines, args.figures, "step-limit", args.command, figures)
 
 

@@ -7,7 +7,7 @@
 #   native    -march=native, in NATIVE_DIR (default build-bench-native)
 # each running the step, its phase prefixes, the lower-triangle memory bound and the GEMM
 # peak REPETITIONS times (default 3) interleaved at random; then scripts/step_limit_report.py.
-# About 20 minutes on 2 cores.
+# About 40 minutes on 2 cores.
 #
 # Usage: bash scripts/step_limit_report.sh [BUILD_DIR [NATIVE_DIR]]
 set -euo pipefail
@@ -25,9 +25,9 @@ sylva_install_packages build-essential cmake ninja-build libeigen3-dev libbenchm
 
 filter='^BM_(StepBatched|PhasePredict|PhaseLinearize|PhaseRankUpdate|BoundLowerReadWrite)/|^BM_GemmPeak'
 for build in baseline native; do
-  if [[ "${build}" == baseline ]]; then dir="${baseline_dir}"; flags=""; else dir="${native_dir}"; flags="-march=native"; fi
+  if [[ "${build}" == baseline ]]; then dir="${baseline_dir}"; native=OFF; else dir="${native_dir}"; native=ON; fi
   sylva_prefer_clang "${dir}"
-  cmake -S "${root}" -B "${dir}" -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS="${flags}" \
+  cmake -S "${root}" -B "${dir}" -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS="" -DSYLVA_NATIVE="${native}" \
     -DSYLVA_BUILD_BENCHMARKS=ON -DSYLVA_BUILD_TESTS=OFF -DSYLVA_BUILD_EXAMPLES=OFF
   cmake --build "${dir}" -j "${JOBS:-2}" --target bench_slam_step
   echo "==> bench_slam_step (${build})" >&2

@@ -9,4 +9,8 @@ if(NOT TARGET forest_slam_pipeline)
     ${CMAKE_CURRENT_LIST_DIR}/forest_run.cpp)
   target_include_directories(forest_slam_pipeline PUBLIC ${CMAKE_CURRENT_LIST_DIR})
   target_link_libraries(forest_slam_pipeline PUBLIC sylva::sylva PRIVATE sylva_warnings)
+  # The same instruction set as the programs that link it (SYLVA_NATIVE), whichever folder
+  # defines it: inline functions compiled for two instruction sets in one program would be
+  # merged by the linker, one copy for all.
+  target_compile_options(forest_slam_pipeline PRIVATE ${SYLVA_NATIVE_OPTIONS})
 endif()

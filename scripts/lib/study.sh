@@ -12,7 +12,7 @@ sylva_study_build() {
   source "$repo/scripts/lib/install_packages.sh"
   sylva_install_packages build-essential cmake libeigen3-dev libboost-math-dev libcli11-dev nlohmann-json3-dev gnuplot-nox
   echo "==> building tree_width_study in $build" >&2
-  cmake -S "$repo" -B "$build" -DCMAKE_BUILD_TYPE=Release \
+  cmake -S "$repo" -B "$build" -DCMAKE_BUILD_TYPE=Release -DSYLVA_NATIVE=OFF \
     -DSYLVA_BUILD_TESTS=OFF -DSYLVA_BUILD_BENCHMARKS=OFF -DSYLVA_BUILD_EXAMPLES=ON \
     -DCMAKE_RUNTIME_OUTPUT_DIRECTORY="$build/bin" >&2
   cmake --build "$build" --target tree_width_study -j "$jobs" >&2
