@@ -88,7 +88,9 @@ run_ctest() {
   local dir="$1"
   shift
   local log="$dir/ctest-output.log"
-  (cd "$dir" && env "$@" ctest --output-on-failure -j "$jobs") 2>&1 | tee "$log"
+  # Without the builds' jobserver (MAKEFLAGS, --overlap): the compile-fail tests run builds of
+  # their own, one target each.
+  (cd "$dir" && env -u MAKEFLAGS "$@" ctest --output-on-failure -j "$jobs") 2>&1 | tee "$log"
   summary="$(grep -E 'tests passed|tests failed' "$log" | tail -n 1)"
 }
 
@@ -102,12 +104,14 @@ main_phase() {
   # tests and smoke runs do not need the speed (scripts/run_benchmarks.sh and
   # scripts/real_data_report.sh build what they time at -O3 in builds of their own). The
   # programs whose ctest runs are short even unoptimized (SYLVA_SMOKE_ONLY_OPTIONS, top-level
-  # CMakeLists.txt) compile at -O0, about half the time.
+  # CMakeLists.txt) compile at -O0, about half the time. The examples and benchmarks keep the
+  # baseline instruction set (SYLVA_NATIVE=OFF): the docs quick run (docs:regenerate_quick)
+  # checks their figures against the pages, which come from baseline builds.
   cmake -S "$repo" -B "$build_root/test" -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS_RELEASE="-O1 -DNDEBUG" \
-    -DSYLVA_SMOKE_ONLY_OPTIONS="-O0" \
+    -DSYLVA_SMOKE_ONLY_OPTIONS="-O0" -DSYLVA_NATIVE=OFF \
     ${SYLVA_CXX:+-DCMAKE_CXX_COMPILER="$SYLVA_CXX"} \
     -DSYLVA_BUILD_TESTS=ON -DSYLVA_UNIT_TESTS="$unit_tests" -DSYLVA_BUILD_EXAMPLES=ON -DSYLVA_BUILD_BENCHMARKS=ON
-  cmake --build "$build_root/test" -j "$build_jobs"
+  cmake --build "$build_root/test" ${build_jobs:+-j "$build_jobs"}
   finish "Release build"
   begin "ctest (Release)"
   run_ctest "$build_root/test"
@@ -133,7 +137,7 @@ sanitize_phase() {
     -DCMAKE_CXX_FLAGS_DEBUG="-O0 ${SYLVA_SANITIZE_DEBUG:-}" -DSYLVA_SLOW_TEST_OPTIONS="-O1" \
     -DSYLVA_BUILD_TESTS=ON -DSYLVA_UNIT_TESTS=ON -DSYLVA_BUILD_EXAMPLES=OFF -DSYLVA_BUILD_BENCHMARKS=OFF \
     -DSYLVA_SANITIZERS="address;undefined"
-  cmake --build "$build_root/sanitize" -j "$build_jobs"
+  cmake --build "$build_root/sanitize" ${build_jobs:+-j "$build_jobs"}
   finish "ASan+UBSan build"
   begin "ctest (ASan+UBSan)"
   run_ctest "$build_root/sanitize" \
@@ -157,7 +161,7 @@ consumer_phase() {
     echo "test.sh: the consumer found sylva in '$found', not in the fresh prefix" >&2
     exit 1
   fi
-  cmake --build "$tmp/consumer-build" -j "$jobs"
+  MAKEFLAGS= cmake --build "$tmp/consumer-build" -j "$jobs"
   "$tmp/consumer-build/sylva_consumer"
   finish "install + tests/consumer" "consumer passed"
 }
@@ -167,17 +171,40 @@ label() { sed -u "s/^/[$1] /"; }
 
 if ((overlap && run_main && (run_sanitize || run_consumer))); then
   # Two chains side by side: the Release phase then the consumer, and the sanitizer phase;
-  # both must pass. The two large builds take half the jobs each, so that no more compilers
-  # run than there are cores (each large unit's compile takes more CPU time when more
-  # processes share the caches, and the builds' CPU time is most of the run); ctest and the
-  # consumer keep the full -j. The consumer follows the Release phase because the sanitizer
-  # phase is the longer of the two. Both chains are background jobs, so that `set -e` holds
-  # inside each (in a subshell on the left of `||` bash would ignore it).
-  build_jobs=$((jobs > 1 ? jobs / 2 : 1))
-  ( main_phase 2>&1 | label release
+  # both must pass. The two large builds share the cores, so that no more compilers run than
+  # there are cores (each large unit's compile takes more CPU time when more processes share
+  # the caches, and the builds' CPU time is most of the run); ctest and the consumer keep the
+  # full -j. The consumer follows the Release phase because the sanitizer phase is the longer
+  # of the two. Both chains are background jobs, so that `set -e` holds inside each (in a
+  # subshell on the left of `||` bash would ignore it).
+  # With GNU make (CMake's default generator here) the two builds draw their jobs from one
+  # jobserver, a pipe of tokens that both makes read (MAKEFLAGS): each make runs one job of its
+  # own and one more per token it takes. They start with one job each, and when the first
+  # chain is done its job's token goes to the other build, so that the sanitizer build's last
+  # units do not compile one at a time beside an idle core (in a local run of .ci/run, the
+  # Release chain ended about 500 s before the sanitizer build did). With another generator
+  # (CMAKE_GENERATOR) each build takes half the jobs, as before.
+  jobserver_fd=""
+  if [[ -z "${CMAKE_GENERATOR:-}" || "${CMAKE_GENERATOR}" == "Unix Makefiles" ]] &&
+     make --version 2>/dev/null | grep -q '^GNU Make [4-9]'; then
+    fifo="$(mktemp -u "${TMPDIR:-/tmp}/sylva-jobserver.XXXXXX")"
+    mkfifo "$fifo"
+    exec {jobserver_fd}<>"$fifo"
+    rm -f "$fifo"
+    for ((token = 2; token < jobs; ++token)); do printf '+' >&"$jobserver_fd"; done
+    export MAKEFLAGS="-j$jobs --jobserver-auth=$jobserver_fd,$jobserver_fd"
+    build_jobs=""
+  else
+    build_jobs=$((jobs > 1 ? jobs / 2 : 1))
+  fi
+  # A chain that is done hands its job to the other one's build (a no-op without the jobserver).
+  hand_over_job() { if [[ -n "$jobserver_fd" ]]; then printf '+' >&"$jobserver_fd"; fi; }
+  ( trap hand_over_job EXIT
+    main_phase 2>&1 | label release
     if ((run_consumer)); then consumer_phase 2>&1 | label consumer; fi ) &
   main_pid=$!
-  ( if ((run_sanitize)); then sanitize_phase; fi ) 2>&1 | label sanitize &
+  ( trap hand_over_job EXIT
+    if ((run_sanitize)); then sanitize_phase; fi ) 2>&1 | label sanitize &
   rest_pid=$!
   main_status=0
   rest_status=0
