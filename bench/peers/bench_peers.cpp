@@ -40,11 +40,25 @@
 ///     steps (sylva batched for the naive pair, sylva's AlaDavison replica for the other pair,
 ///     sylva sequential for itself) to 1e-9.
 ///
+/// Whole runs (registered only for the sizes of --peers_whole_sizes; none by default, since
+/// MRPT's whole run at N = 2000 takes minutes): every step of both laps from an empty map, one
+/// iteration per repetition, timed as a whole.
+///   mrpt_davison_whole             MRPT kfEKFAlaDavison
+///   sylva_davison_compressed_whole sylva's replica of that fusion (kAlaDavison above) through
+///                                  the compressed EKF, `setCompression(withinRadius(50, 40))`:
+///                                  a region of radius 50 m centred 40 m ahead of the robot, the
+///                                  region of docs/compressed-ekf.md that saved most on lap 2 of
+///                                  this world at N = 2000 (chosen on those lap-2 runs)
+/// The compressed run's final state is compared, by landmark id, with MRPT's final state from
+/// the same program (mean to 1e-9, covariance to 1e-9 of max |P|; counters max_mean_diff and
+/// max_cov_relative_diff); a disagreement is reported as an error. Counter ms_per_run.
+///
 /// Extra flags (before Google Benchmark's own):
 ///   --peers_sizes=50,100,200,500,1000,2000   map sizes N
 ///   --peers_steps=10                          lap-2 steps per timed iteration
 ///   --peers_mrpt_max_n=2000                   skip MRPT families above this N
 ///   --peers_naive_max_n=2000                  skip mrpt_naive above this N (O(n^3) per step)
+///   --peers_whole_sizes=                      map sizes N of the whole runs (e.g. 2000)
 /// Google Benchmark's --benchmark_min_time applies to the timed (manual) time; a benchmark
 /// whose first iteration exceeds it (MRPT at large N) runs that one iteration only.
 
@@ -64,6 +78,7 @@
 #include "circle_world.hpp"
 #include "filter_state.hpp"
 #include "mrpt_peer.hpp"
+#include "sylva/filter/compression.hpp"
 #include "sylva_circle_slam.hpp"
 #include "sylva_peer.hpp"
 
@@ -96,6 +111,7 @@ struct Options {
   int steps = 10;
   int mrpt_max_n = 2000;
   int naive_max_n = 2000;
+  std::vector<int> whole_sizes;
 };
 Options g_options;
 
@@ -312,6 +328,79 @@ void runBenchmark(benchmark::State& state, Family family, int landmarks) {
   setCounters(state, s, total_s, total_cpu_s, state.iterations());
 }
 
+// ---- whole runs ----------------------------------------------------------------------------
+
+enum class WholeRun { kMrptDavison, kSylvaDavisonCompressed };
+
+const char* wholeRunName(WholeRun w) {
+  return w == WholeRun::kMrptDavison ? "mrpt_davison_whole" : "sylva_davison_compressed_whole";
+}
+
+/// The world of the whole runs at one N, and MRPT's final state once it has run.
+struct WholeSetup {
+  explicit WholeSetup(int landmarks)
+      : world(Setup::makeConfig(landmarks)), steps(sylva_bench::sylvaSteps(world)) {}
+  sylva_bench::CircleWorld world;
+  std::vector<sylva_bench::SylvaStep> steps;
+  std::unique_ptr<FilterState> mrpt_final;
+};
+
+WholeSetup& wholeSetupFor(int landmarks) {
+  static std::unique_ptr<WholeSetup> current;
+  if (!current || current->world.landmarkCount() != landmarks) {
+    current.reset();
+    current = std::make_unique<WholeSetup>(landmarks);
+  }
+  return *current;
+}
+
+void runWhole(benchmark::State& state, WholeRun which, int landmarks) {
+  WholeSetup& s = wholeSetupFor(landmarks);
+  const int total = static_cast<int>(s.world.steps().size());
+  double total_s = 0.0;
+  FilterState final_state;
+  for (auto _ : state) {
+    if (which == WholeRun::kMrptDavison) {
+      MrptPeer peer(s.world, MrptMethod::kAlaDavison);  // built outside the timed window
+      const auto t0 = std::chrono::steady_clock::now();
+      for (int k = 0; k < total; ++k) peer.step(k);
+      const double dt = seconds(std::chrono::steady_clock::now() - t0);
+      state.SetIterationTime(dt);
+      total_s += dt;
+      final_state = peer.state();
+    } else {
+      using Filter = sylva_bench::OdometrySlam;
+      Filter ekf = sylva_bench::makeOdometrySlam(s.world);
+      ekf.setCompression(Filter::withinRadius(50.0, 40.0));
+      sylva_peers::PeerScratch scratch;
+      const auto t0 = std::chrono::steady_clock::now();
+      for (int k = 0; k < total; ++k)
+        sylva_peers::runPeerStep(ekf, s.steps[static_cast<std::size_t>(k)], s.world.odometryNoise(),
+                                 s.world.config().dt_s, SylvaFusion::kAlaDavison, scratch);
+      (void)ekf.mean();  // a read brings the passive part up to date: part of the run
+      const double dt = seconds(std::chrono::steady_clock::now() - t0);
+      state.SetIterationTime(dt);
+      total_s += dt;
+      final_state = sylva_peers::stateOf(ekf);
+    }
+  }
+  const std::int64_t iterations = state.iterations();
+  state.counters["N"] = landmarks;
+  state.counters["steps_per_run"] = total;
+  state.counters["ms_per_run"] = iterations > 0 ? 1e3 * total_s / static_cast<double>(iterations) : 0.0;
+  if (which == WholeRun::kMrptDavison) {
+    s.mrpt_final = std::make_unique<FilterState>(std::move(final_state));
+  } else if (s.mrpt_final) {
+    const auto d = sylva_peers::compareStates(*s.mrpt_final, final_state);
+    std::fprintf(stderr, "peers: N = %d, whole run, MRPT kfEKFAlaDavison vs sylva compressed: %s\n", landmarks,
+                 d.summary().c_str());
+    state.counters["max_mean_diff"] = d.max_mean;
+    state.counters["max_cov_relative_diff"] = d.max_cov_relative;
+    if (!d.same_landmarks || d.max_mean > kMeanTolerance || d.max_cov_relative > kCovarianceTolerance)
+      state.SkipWithError(("the final states of the whole runs disagree: " + d.summary()).c_str());
+  }
+}
+
 std::vector<int> parseSizes(const char* text) {
   std::vector<int> sizes;
   std::stringstream ss(text);
@@ -344,6 +433,8 @@ void parseOptions(int& argc, char** argv) {
       g_options.mrpt_max_n = std::atoi(v3);
     } else if (const char* v4 = value("--peers_naive_max_n")) {
       g_options.naive_max_n = std::atoi(v4);
+    } else if (const char* v5 = value("--peers_whole_sizes")) {
+      g_options.whole_sizes = *v5 ? parseSizes(v5) : std::vector<int>{};
     } else if (std::strncmp(a, "--peers_", 8) == 0) {
       std::fprintf(stderr, "bench_peers: unknown flag %s\n", a);
       std::exit(2);
@@ -368,6 +459,16 @@ int main(int argc, char** argv) {
       const std::string name = std::string(familyName(f)) + "/" + std::to_string(n);
       benchmark::RegisterBenchmark(name.c_str(), runBenchmark, f, n)
           ->UseManualTime()
+          ->Unit(benchmark::kMillisecond);
+    }
+  }
+  for (int n : g_options.whole_sizes) {  // MRPT first: the compressed run compares with its final state
+    for (WholeRun w : {WholeRun::kMrptDavison, WholeRun::kSylvaDavisonCompressed}) {
+      if (w == WholeRun::kMrptDavison && n > g_options.mrpt_max_n) continue;
+      const std::string name = std::string(wholeRunName(w)) + "/" + std::to_string(n);
+      benchmark::RegisterBenchmark(name.c_str(), runWhole, w, n)
+          ->UseManualTime()
+          ->Iterations(1)
           ->Unit(benchmark::kMillisecond);
     }
   }

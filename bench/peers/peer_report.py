@@ -5,13 +5,14 @@ bench_peers_baseline (bench/peers/bench_peers.cpp), as a Markdown report on stdo
 
 Reads the counter ms_per_step of every benchmark "<family>/<N>/manual_time" (the median over
 repetitions when there are several). Families: mrpt_naive, mrpt_davison (MRPT, Debian's
-build, taken from the native run), sylva_batched, sylva_davison, sylva_sequential (from both
-runs). Ratios at each N:
+build), sylva_batched, sylva_davison, sylva_sequential, from both runs. Ratios at each N, each
+within one program's run (MRPT from the native run where the baseline run has none):
   naive / sylva batched native        and   AlaDavison / sylva batched native,
   AlaDavison / sylva's AlaDavison fusion native (the same estimator),
+  naive / sylva batched baseline      and   AlaDavison / sylva batched baseline,
   sylva batched baseline / native     (what the instruction set alone buys).
-The targets of the issue (at N = 1000: >= 300x vs kfEKFNaive, >= 100x vs kfEKFAlaDavison for
-sylva batched native) are checked and printed.
+The target of issue 19 (at N = 1000, both built for baseline x86-64: >= 150x vs kfEKFNaive)
+is checked on the medians and printed; docs/benchmarks.md judges it run by run.
 
 Usage: peer_report.py --native JSON... [--baseline JSON...] [--out FILE] [--command TEXT]
 (several files per build, e.g. one per N, are merged).
@@ -23,8 +24,7 @@ import sys
 
 FAMILIES = ["mrpt_naive", "mrpt_davison", "sylva_batched", "sylva_davison", "sylva_sequential"]
 TARGET_N = 1000
-TARGET_NAIVE = 300.0
-TARGET_DAVISON = 100.0
+TARGET_NAIVE = 150.0  # issue 19: MRPT kfEKFNaive / sylva batched, both baseline
 
 
 def load_all(paths):
@@ -136,18 +136,20 @@ def main():
         sbb = baseline.get(("sylva_batched", n))
         naive = native.get(("mrpt_naive", n))
         dav = native.get(("mrpt_davison", n))
+        naive_b = baseline.get(("mrpt_naive", n), naive)
+        dav_b = baseline.get(("mrpt_davison", n), dav)
         r_naive, r_dav = ratio(naive, sb), ratio(dav, sb)
+        r_naive_b = ratio(naive_b, sbb)
         cells = [str(n), fmt_ratio(r_naive), fmt_ratio(r_dav),
                  fmt_ratio(ratio(dav, native.get(("sylva_davison", n)))),
-                 fmt_ratio(ratio(naive, sbb)), fmt_ratio(ratio(dav, sbb)), fmt_ratio(ratio(sbb, sb))]
+                 fmt_ratio(r_naive_b), fmt_ratio(ratio(dav_b, sbb)), fmt_ratio(ratio(sbb, sb))]
         out.append("| " + " | ".join(cells) + " |")
         if n == TARGET_N:
-            for label, r, target in [("kfEKFNaive", r_naive, TARGET_NAIVE), ("kfEKFAlaDavison", r_dav, TARGET_DAVISON)]:
-                if r is None:
-                    verdicts.append(f"- N = {n}, vs {label}: not measured")
-                else:
-                    verdicts.append(f"- N = {n}, sylva batched (native) vs {label}: {r:,.0f}x "
-                                    f"(target >= {target:.0f}x): {'met' if r >= target else 'NOT met'}")
+            if r_naive_b is None:
+                verdicts.append(f"- N = {n}, vs kfEKFNaive, both baseline: not measured")
+            else:
+                verdicts.append(f"- N = {n}, sylva batched vs kfEKFNaive, both baseline: {r_naive_b:,.0f}x "
+                                f"(target >= {TARGET_NAIVE:.0f}x, medians): {'met' if r_naive_b >= TARGET_NAIVE else 'NOT met'}")
     errors = [f"- {f}/{n}: {r['error']}" for src in (native, baseline) for (f, n), r in sorted(src.items()) if r["error"]]
     if verdicts:
         out.append("\nTargets of the issue:\n")
