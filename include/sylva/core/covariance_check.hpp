@@ -9,10 +9,10 @@
 /// filter that is built. It factors in place through the same
 /// `Eigen::LLT<Eigen::Ref<Eigen::MatrixXd>>` as the filter's batched update, so a program
 /// that updates compiles it once, and up to 16 x 16 it works on the stack: building a noise
-/// allocates nothing. It is still a template, on the work matrix's type with `MatrixXd` as
-/// the only one used, so that a translation unit that includes the header but never calls it
-/// does not compile the factorization (as a plain inline function it did, about 2 s of g++
-/// -O2 in every unit that includes the filter).
+/// allocates nothing. It is still a template, with its argument's type deferred
+/// (core/deferred.hpp), so that a translation unit that includes the header but never calls
+/// it compiles none of it (as a plain inline function it did, about 2 s of g++ -O2 in every
+/// unit that includes the filter).
 
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
@@ -21,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "sylva/core/deferred.hpp"
 #include "sylva/core/error.hpp"
 
 namespace sylva::detail {
@@ -34,9 +35,10 @@ enum class Definiteness {
 /// its largest entry (kInvalidArgument; of max(1, largest entry) for kPositiveSemi) and of the
 /// given definiteness (kNotPositiveDefinite). The messages read "<what> is not finite", "...
 /// is not symmetric", "... is not positive definite" or "... is not positive semi-definite".
-template <typename WorkMatrix = Eigen::MatrixXd>
-void checkCovarianceMatrix(const Eigen::Ref<const Eigen::MatrixXd>& P, Definiteness definiteness,
+template <typename Tag = void>
+void checkCovarianceMatrix(const Eigen::Ref<const Deferred<Eigen::MatrixXd, Tag>>& P, Definiteness definiteness,
                            const char* what) {
+  using WorkMatrix = Deferred<Eigen::MatrixXd, Tag>;
   if (!P.allFinite()) fail(ErrorCode::kNonFinite, std::string(what) + " is not finite");
   const bool semi = definiteness == Definiteness::kPositiveSemi;
   const double largest = P.size() > 0 ? P.cwiseAbs().maxCoeff() : 0.0;

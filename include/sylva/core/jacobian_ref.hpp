@@ -7,6 +7,8 @@
 #include <Eigen/Core>
 #include <cassert>
 
+#include "sylva/core/deferred.hpp"
+
 namespace sylva {
 
 /// Placeholder meaning "I do not need this Jacobian".
@@ -52,5 +54,13 @@ class JacobianRef {
   Scalar_* data_ = nullptr;
   Eigen::Index outer_stride_ = Rows_;
 };
+
+/// `JacobianRef<Rows, Cols>` as a parameter of a function template declared
+/// `template <typename Tag = void>`: the same type, spelled so that the body that writes the
+/// Jacobian compiles only where the function is called (core/deferred.hpp). The models use it
+/// for their Jacobian outputs; a model of your own may take `JacobianRef` as well, and then
+/// costs its includers a little more compile time.
+template <int Rows, int Cols, typename Tag>
+using JacobianArg = detail::Deferred<JacobianRef<Rows, Cols>, Tag>;
 
 }  // namespace sylva

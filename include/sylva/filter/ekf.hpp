@@ -48,6 +48,7 @@
 #include <vector>
 
 #include "sylva/core/covariance_check.hpp"
+#include "sylva/core/deferred.hpp"
 #include "sylva/core/error.hpp"
 #include "sylva/core/jacobian_ref.hpp"
 #include "sylva/core/parallel.hpp"
@@ -183,7 +184,8 @@ template <int M, int R, int L>
 class BatchLinearizations {
  public:
   static constexpr int kStride = M * R + M * L;
-  BatchLinearizations(Eigen::VectorXd& buffer, std::vector<int>& offsets, int k)
+  template <typename Vector>
+  BatchLinearizations(Vector& buffer, std::vector<int>& offsets, int k)
       : offsets_(offsets) {
     growWorkspace(buffer, static_cast<Eigen::Index>(k) * kStride);
     offsets_.resize(static_cast<std::size_t>(k));
@@ -218,6 +220,18 @@ template <typename UpdateForm_, typename Robot_, typename... Landmarks_>
 class BasicEkf {
   static_assert(sizeof...(Landmarks_) >= 1, "Ekf needs at least one landmark parametrization");
   static_assert(Robot_::kDim > 0, "Robot must define `static constexpr int kDim` > 0");
+
+  // The types the filter's bodies use, spelled so that they depend on the robot
+  // (core/deferred.hpp): clang compiles those bodies only where a filter type is
+  // instantiated, not in every unit that includes this header. Each is the Eigen type it names.
+  using Deferral = detail::Deferred<void, Robot_>;
+  using VectorXd = detail::Deferred<Eigen::VectorXd, Robot_>;
+  using MatrixXd = detail::Deferred<Eigen::MatrixXd, Robot_>;
+  using GaugeMatrix = detail::Deferred<Mat<kGaugeDim, kGaugeDim>, Robot_>;
+  using GaugeVector = detail::Deferred<Vec<kGaugeDim>, Robot_>;
+  using GaugeRows = detail::Deferred<Eigen::Matrix<double, kGaugeDim, Eigen::Dynamic>, Robot_>;
+  using Vec2 = detail::Deferred<Vec<2>, Robot_>;
+  using Workspace = detail::BatchWorkspace<Deferral>;
 
  public:
   using UpdateForm = UpdateForm_;
@@ -462,9 +476,9 @@ class BasicEkf {
     }
     // The region's centre for a robot at x.
     const auto centreFor = [ahead_m](const RobotState& x) {
-      Vec<2> centre = x.template segment<2>(Robot::kPlanarPosition);
+      Vec2 centre = x.template segment<2>(Robot::kPlanarPosition);
       if constexpr (detail::HasPlanarHeading<Robot>::value)
-        centre += ahead_m * Vec<2>(std::cos(x[Robot::kPlanarHeading]), std::sin(x[Robot::kPlanarHeading]));
+        centre += ahead_m * Vec2(std::cos(x[Robot::kPlanarHeading]), std::sin(x[Robot::kPlanarHeading]));
       return centre;
     };
     const auto left = [radius_m, centreFor](const BasicEkf& ekf, const RobotState& at_entry) {
@@ -472,11 +486,11 @@ class BasicEkf {
              radius_m * radius_m;
     };
     const auto select = [radius_m, centreFor](const BasicEkf& ekf, const LandmarkSlot& slot) {
-      const Vec<2> centre = centreFor(ekf.robotMean());
+      const Vec2 centre = centreFor(ekf.robotMean());
       return ekf.visit(slot.id, [&](auto tag) {
         using L = typename decltype(tag)::type;
         if constexpr (detail::HasPlanarPosition<L>::value) {
-          const Vec<2> p = ekf.template landmarkMean<L>(slot.id).template segment<2>(L::kPlanarPosition);
+          const Vec2 p = ekf.template landmarkMean<L>(slot.id).template segment<2>(L::kPlanarPosition);
           return (p - centre).squaredNorm() <= radius_m * radius_m;
         } else {
           return true;
@@ -572,8 +586,8 @@ class BasicEkf {
   /// Copy of the whole mean: the robot's state, then the landmark blocks. Its length is n
   /// (`dim()`) but for a robot on a manifold, whose state is kRobotStateDim - kRobotDim
   /// entries longer than its rows in the covariance.
-  Eigen::VectorXd mean() const {
-    Eigen::VectorXd out(dim() - kRobotDim + kRobotStateDim);
+  VectorXd mean() const {
+    VectorXd out(dim() - kRobotDim + kRobotStateDim);
     out << robot_mean_, mean_.segment(kRobotDim, dim() - kRobotDim);
     if (pending()) {
       const int a = compression_->activeDim();
@@ -598,8 +612,8 @@ class BasicEkf {
 
   /// Copy of the whole covariance (n x n, both triangles filled). O(n^2 a) with the
   /// compressed EKF between global updates.
-  Eigen::MatrixXd covariance() const {
-    Eigen::MatrixXd full = cov_.inUse().template selfadjointView<Eigen::Lower>();
+  MatrixXd covariance() const {
+    MatrixXd full = cov_.inUse().template selfadjointView<Eigen::Lower>();
     if (pending()) compression_->correctCovariance(*this, full);
     return full;
   }
@@ -785,7 +799,7 @@ class BasicEkf {
     // Every workspace below grows only when a larger state or batch is seen: no allocation
     // in steady state.
     detail::BatchLinearizations<M, kRobotDim, L> lins(batch_.lins, batch_.offsets, k);
-    auto nu = batch_.vector(detail::BatchWorkspace::kInnovation, total);
+    auto nu = batch_.vector(Workspace::kInnovation, total);
     int i = 0;
     for (const Observation<Model>& obs : observations) {
       if (!obs.z.allFinite())
@@ -810,7 +824,7 @@ class BasicEkf {
 
     const ActiveWindow window(cov_, activeDim());
     auto PHt = workspaceMatrix<Eigen::Dynamic>(total);
-    auto S = batch_.matrix(detail::BatchWorkspace::kInnovationCovariance, total);
+    auto S = batch_.matrix(Workspace::kInnovationCovariance, total);
     // P H^T and S = H P H^T + R (lower triangle, block (a, b) for b <= a, from the columns of
     // P H^T) for the linearizations in `lins`.
     const auto formInnovationCovariance = [&] {
@@ -842,7 +856,7 @@ class BasicEkf {
     };
     formInnovationCovariance();
     // The joint R, kept for the Joseph form only.
-    auto R = batch_.matrix(detail::BatchWorkspace::kNoise, std::is_same_v<UpdateForm, JosephUpdate> ? total : 0);
+    auto R = batch_.matrix(Workspace::kNoise, std::is_same_v<UpdateForm, JosephUpdate> ? total : 0);
     if constexpr (std::is_same_v<UpdateForm, JosephUpdate>) {
       R.setZero();
       i = 0;
@@ -851,7 +865,7 @@ class BasicEkf {
         ++i;
       }
     }
-    Eigen::LLT<Eigen::Ref<Eigen::MatrixXd>> llt(S);  // in place: S now holds its factor L
+    Eigen::LLT<Eigen::Ref<MatrixXd>> llt(S);  // in place: S now holds its factor L
     if (llt.info() != Eigen::Success)
       fail(ErrorCode::kNotPositiveDefinite,
            nameOf<Model>() + ": batched innovation covariance is not positive definite");
@@ -1055,7 +1069,7 @@ class BasicEkf {
     if (m > 0) cov_.stored().block(at, kRobotDim, L, m) = J_P_rm;
     cov_.stored().template block<L, L>(at, at) = P_ll;
     if (exchange) {
-      for (Eigen::VectorXd* v : {&mean_, &first_, &ideal_}) {
+      for (VectorXd* v : {&mean_, &first_, &ideal_}) {
         auto block = v->template segment<L>(off);
         auto other = v->template segment<L>(at);
         block.swap(other);
@@ -1165,8 +1179,8 @@ class BasicEkf {
     constexpr int M = Model::kDim;
     constexpr int L = Landmark::kDim;
     const int k = static_cast<int>(std::size(observations));
-    auto v = batch_.vector(detail::BatchWorkspace::kWhitenedInnovation, k * M);
-    auto landmark_iterates = batch_.vector(detail::BatchWorkspace::kIterates, k * L);
+    auto v = batch_.vector(Workspace::kWhitenedInnovation, k * M);
+    auto landmark_iterates = batch_.vector(Workspace::kIterates, k * L);
     const RobotState robot_prior = robotMean();
     RobotState robot_iterate = robot_prior;
     for (int a = 0; a < k; ++a) landmark_iterates.template segment<L>(a * L) = mean_.template segment<L>(lins.offset(a));
@@ -1358,13 +1372,13 @@ class BasicEkf {
   /// compression off, rows = dim() and nothing changes.
   class ActiveWindow {
    public:
-    ActiveWindow(detail::LowerCovariance& cov, int rows) : cov_(cov), full_(cov.dim()) { cov.setDim(rows); }
+    ActiveWindow(detail::LowerCovariance<Deferral>& cov, int rows) : cov_(cov), full_(cov.dim()) { cov.setDim(rows); }
     ~ActiveWindow() { cov_.setDim(full_); }
     ActiveWindow(const ActiveWindow&) = delete;
     ActiveWindow& operator=(const ActiveWindow&) = delete;
 
    private:
-    detail::LowerCovariance& cov_;
+    detail::LowerCovariance<Deferral>& cov_;
     int full_;
   };
 
@@ -1447,7 +1461,7 @@ class BasicEkf {
     const std::size_t k = slotIndex(s.id);
     // New block rows against every other column of the state, before anything moves.
     const int rest = dim() - Lf;  // dimension of the state without the old block
-    Eigen::MatrixXd cross(Lt, rest);  // allocation: reparametrization is not a hot path
+    MatrixXd cross(Lt, rest);  // allocation: reparametrization is not a hot path
     for (int c = 0, dest = 0; c < dim(); ++c) {
       if (c >= s.offset && c < s.offset + Lf) continue;
       Vec<kRobotDim> p_rc;
@@ -1489,10 +1503,10 @@ class BasicEkf {
     if (needed <= cov_.capacity()) return;
     const int capacity = std::max(needed, 2 * cov_.capacity());
     // Everything is allocated before anything is swapped in.
-    Eigen::VectorXd mean = Eigen::VectorXd::Zero(capacity);
-    Eigen::VectorXd first = Eigen::VectorXd::Zero(capacity);
-    Eigen::VectorXd ideal = Eigen::VectorXd::Constant(capacity, std::numeric_limits<double>::quiet_NaN());
-    Eigen::MatrixXd cov = cov_.grown(capacity);
+    VectorXd mean = VectorXd::Zero(capacity);
+    VectorXd first = VectorXd::Zero(capacity);
+    VectorXd ideal = VectorXd::Constant(capacity, std::numeric_limits<double>::quiet_NaN());
+    MatrixXd cov = cov_.grown(capacity);
     const int n = dim();
     mean.head(n) = mean_.head(n);
     first.head(n) = first_.head(n);
@@ -1507,7 +1521,7 @@ class BasicEkf {
   /// capacity for them reserved). Cannot fail.
   void insertRows(int off, int d) {
     const int tail = dim() - off;
-    for (Eigen::VectorXd* v : {&mean_, &first_, &ideal_}) std::copy_backward(v->data() + off, v->data() + off + tail, v->data() + off + tail + d);
+    for (VectorXd* v : {&mean_, &first_, &ideal_}) std::copy_backward(v->data() + off, v->data() + off + tail, v->data() + off + tail + d);
     cov_.insert(off, d);
   }
 
@@ -1517,7 +1531,7 @@ class BasicEkf {
     if (tail > 0) {
       // Moved down in place (std::copy runs forwards, so an overlap is safe): no temporary,
       // so nothing here can fail.
-      for (Eigen::VectorXd* v : {&mean_, &first_, &ideal_}) std::copy(v->data() + off + d, v->data() + off + d + tail, v->data() + off);
+      for (VectorXd* v : {&mean_, &first_, &ideal_}) std::copy(v->data() + off + d, v->data() + off + d + tail, v->data() + off);
     }
     cov_.erase(off, d);
   }
@@ -1606,13 +1620,13 @@ class BasicEkf {
       const bool small = std::abs(phi) < 1e-6;
       const double a = small ? 1.0 - phi * phi / 6.0 : sin_phi / phi;
       const double b = small ? 0.5 * phi : (1.0 - cos_phi) / phi;
-      const auto retract = [&](int o, const Vec<2>& p) {
-        const Vec<2> xi(delta[o] + phi * p.y(), delta[o + 1] - phi * p.x());  // delta_p - phi J p
-        const Vec<2> moved(cos_phi * p.x() - sin_phi * p.y() + a * xi.x() - b * xi.y(),
+      const auto retract = [&](int o, const Vec2& p) {
+        const Vec2 xi(delta[o] + phi * p.y(), delta[o + 1] - phi * p.x());  // delta_p - phi J p
+        const Vec2 moved(cos_phi * p.x() - sin_phi * p.y() + a * xi.x() - b * xi.y(),
                            sin_phi * p.x() + cos_phi * p.y() + b * xi.x() + a * xi.y());
-        const Vec<2> step = moved - p;
+        const Vec2 step = moved - p;
         delta.template segment<2>(o) = step;
-        c.template segment<2>(o) = Vec<2>(-step.y(), step.x());
+        c.template segment<2>(o) = Vec2(-step.y(), step.x());
       };
       retract(Robot::kPlanarPosition, robot_mean_.template segment<2>(Robot::kPlanarPosition));
       constexpr int kPositions[] = {Landmarks_::kPlanarPosition...};
@@ -1644,8 +1658,8 @@ class BasicEkf {
   // ---------------------------------------------------------------- observability constrained
 
   /// Column block k (0: N(x-)^T, 1: (N(x+) - N(x-))^T, 2: B^T) of the gauge workspace, 5 x n.
-  Eigen::Map<Eigen::Matrix<double, kGaugeDim, Eigen::Dynamic>> gaugeBlock(int k) {
-    return Eigen::Map<Eigen::Matrix<double, kGaugeDim, Eigen::Dynamic>>(
+  Eigen::Map<GaugeRows> gaugeBlock(int k) {
+    return Eigen::Map<GaugeRows>(
         gauge_.data() + static_cast<Eigen::Index>(k) * kGaugeDim * dim(), kGaugeDim, dim());
   }
 
@@ -1699,18 +1713,18 @@ class BasicEkf {
       fillGaugeDirections(delta, 1.0, dNt);
       dNt -= Nt;
       if (!dNt.allFinite()) return;
-      const auto invert = [this](const Mat<kGaugeDim, kGaugeDim>& NtN) {
-        const Eigen::LLT<Mat<kGaugeDim, kGaugeDim>> llt(NtN);
+      const auto invert = [this](const GaugeMatrix& NtN) {
+        const Eigen::LLT<GaugeMatrix> llt(NtN);
         if (llt.info() != Eigen::Success) return false;
-        const Vec<kGaugeDim> d = llt.matrixLLT().diagonal();
+        const GaugeVector d = llt.matrixLLT().diagonal();
         if (!(d.minCoeff() > 1e-6 * d.maxCoeff())) return false;
-        gauge_inverse_ = llt.solve(Mat<kGaugeDim, kGaugeDim>::Identity());
+        gauge_inverse_ = llt.solve(GaugeMatrix::Identity());
         return gauge_inverse_.allFinite();
       };
       const auto N_robot = Nt.template leftCols<kRobotDim>();
       gauge_robot_only_ = gauge_inverse_choice_ == GaugeInverse::kRobot && invert(N_robot * N_robot.transpose());
       if (!gauge_robot_only_) {
-        Mat<kGaugeDim, kGaugeDim> NtN = Mat<kGaugeDim, kGaugeDim>::Zero();
+        GaugeMatrix NtN = GaugeMatrix::Zero();
         for (int i = 0; i < dim(); ++i) NtN.noalias() += Nt.col(i) * Nt.col(i).transpose();
         if (!invert(NtN)) return;
       }
@@ -1752,16 +1766,16 @@ class BasicEkf {
       }
       // B^T = G N_a^T P, and C = A P A^T = G N_a^T P N_a G.
       for (int j = 0; j < dim(); ++j) {
-        const Vec<kGaugeDim> b = gauge_inverse_ * Bt.col(j);
+        const GaugeVector b = gauge_inverse_ * Bt.col(j);
         Bt.col(j) = b;
       }
-      Mat<kGaugeDim, kGaugeDim> NtB = Mat<kGaugeDim, kGaugeDim>::Zero();
+      GaugeMatrix NtB = GaugeMatrix::Zero();
       const int rows = gauge_robot_only_ ? kRobotDim : dim();
       for (int i = 0; i < rows; ++i) NtB.noalias() += Nt.col(i) * Bt.col(i).transpose();
-      const Mat<kGaugeDim, kGaugeDim> C = gauge_inverse_ * NtB;
-      const Mat<kGaugeDim, kGaugeDim> C_half = 0.25 * (C + C.transpose());
+      const GaugeMatrix C = gauge_inverse_ * NtB;
+      const GaugeMatrix C_half = 0.25 * (C + C.transpose());
       for (int j = 0; j < dim(); ++j) {
-        const Vec<kGaugeDim> b = Bt.col(j) + C_half * dNt.col(j);
+        const GaugeVector b = Bt.col(j) + C_half * dNt.col(j);
         Bt.col(j) = b;
       }
       for (int j = 0; j < dim(); ++j) {
@@ -1784,9 +1798,9 @@ class BasicEkf {
   }
 
   /// Workspace for the mean increment of an update (grows only with the state).
-  Eigen::Map<Eigen::VectorXd> meanIncrement() {
+  Eigen::Map<VectorXd> meanIncrement() {
     detail::growWorkspace(delta_, dim());
-    return Eigen::Map<Eigen::VectorXd>(delta_.data(), dim());
+    return Eigen::Map<VectorXd>(delta_.data(), dim());
   }
 
   /// Throws kOutOfDomain if mean + delta would leave the domain of a landmark whose type
@@ -1862,29 +1876,29 @@ class BasicEkf {
   /// The landmarks' means, laid out as the covariance's rows (the robot's first kRobotDim
   /// entries are unused: the robot's mean is robot_mean_).
   std::uint64_t revision_ = 0;  ///< see revision()
-  Eigen::VectorXd mean_;
+  VectorXd mean_;
   /// Linearization points for kFirstEstimates, laid out as mean_: each landmark's estimate
   /// when it entered the state.
-  Eigen::VectorXd first_;
+  VectorXd first_;
   /// Linearization points for kIdeal, laid out as mean_: the true states the caller handed
   /// over, NaN where none is (a new landmark).
-  Eigen::VectorXd ideal_;
+  VectorXd ideal_;
   LinearizationPoint linearization_ = LinearizationPoint::kCurrentEstimate;
   IteratedUpdate iterated_;
   Parallel* parallel_ = nullptr;  ///< see setParallel
-  detail::LowerCovariance cov_;  ///< the covariance (lower triangle) and the state dimension n
+  detail::LowerCovariance<Deferral> cov_;  ///< the covariance (lower triangle) and the state dimension n
   detail::SlotTable slots_;  ///< where each landmark's block lies
-  Eigen::VectorXd workspace_a_;
-  Eigen::VectorXd delta_;
-  Eigen::VectorXd invariant_;  ///< c and a of the invariant EKF's covariance transport (2n)
+  VectorXd workspace_a_;
+  VectorXd delta_;
+  VectorXd invariant_;  ///< c and a of the invariant EKF's covariance transport (2n)
   /// N(x-)^T, (N(x+) - N(x-))^T and B^T of the observability-constrained transport (3 x 5n).
-  Eigen::VectorXd gauge_;
-  Mat<kGaugeDim, kGaugeDim> gauge_inverse_ = Mat<kGaugeDim, kGaugeDim>::Zero();
+  VectorXd gauge_;
+  GaugeMatrix gauge_inverse_ = GaugeMatrix::Zero();
   bool gauge_active_ = false;      ///< the next covariance update is followed by the transport
   bool gauge_robot_only_ = false;  ///< A reads the robot's coordinates alone
   GaugeInverse gauge_inverse_choice_ = GaugeInverse::kRobot;
 
-  detail::BatchWorkspace batch_;
+  Workspace batch_;
 
   // The compressed EKF (setCompression; empty: off). Reached only through its hooks, so a
   // program that never compresses compiles none of it.

@@ -11,17 +11,24 @@
 /// Every operation is a template on block sizes only: the robot's rows R, a landmark's rows
 /// L, a measurement's rows M. Filters that share those sizes share their instantiations, so
 /// a program with several filter types (an Ekf and a JosephEkf of the same robot, or two
-/// robots of three coordinates) compiles each kernel once (docs/build-time.md).
+/// robots of three coordinates) compiles each kernel once (docs/build-time.md). The class is a
+/// template only so that its bodies are compiled where it is used (core/deferred.hpp): the
+/// filter names it `LowerCovariance<Deferred<void, Filter>>`, which is `LowerCovariance<void>`
+/// for every filter.
 
 #include <Eigen/Core>
 #include <algorithm>
 
+#include "sylva/core/deferred.hpp"
 #include "sylva/core/types.hpp"
 
 namespace sylva::detail {
 
+template <typename Tag = void>
 class LowerCovariance {
  public:
+  using Matrix = Deferred<Eigen::MatrixXd, Tag>;
+
   /// Rows and columns in use (n).
   int dim() const { return n_; }
   void setDim(int n) { n_ = n; }
@@ -31,8 +38,8 @@ class LowerCovariance {
   double operator()(int i, int j) const { return i >= j ? m_(i, j) : m_(j, i); }
 
   /// The stored matrix: its lower triangle's top-left n x n corner is P.
-  Eigen::MatrixXd& stored() { return m_; }
-  const Eigen::MatrixXd& stored() const { return m_; }
+  Matrix& stored() { return m_; }
+  const Matrix& stored() const { return m_; }
 
   /// The n x n corner in use (only its lower triangle is P).
   auto inUse() { return m_.topLeftCorner(n_, n_); }
@@ -61,12 +68,12 @@ class LowerCovariance {
 
   /// New storage of `capacity` holding the lower triangle in use: allocates, and changes
   /// nothing here (hand it to `adopt`).
-  Eigen::MatrixXd grown(int capacity) const {
-    Eigen::MatrixXd out = Eigen::MatrixXd::Zero(capacity, capacity);
+  Matrix grown(int capacity) const {
+    Matrix out = Matrix::Zero(capacity, capacity);
     out.topLeftCorner(n_, n_).template triangularView<Eigen::Lower>() = m_.topLeftCorner(n_, n_);
     return out;
   }
-  void adopt(Eigen::MatrixXd& storage) {
+  void adopt(Matrix& storage) {
     m_.swap(storage);
     capacity_ = static_cast<int>(m_.rows());
   }
@@ -132,7 +139,7 @@ class LowerCovariance {
   /// size, which then becomes the storage (the old storage is handed back in `spare`), so
   /// nothing is allocated. Each column is copied in runs of rows that stay consecutive.
   template <typename Perm>
-  void permute(const Perm& perm, Eigen::MatrixXd& spare) {
+  void permute(const Perm& perm, Matrix& spare) {
     for (int j = 0; j < n_; ++j) {
       const int pj = perm[j];
       double* dst = spare.col(j).data();
@@ -200,7 +207,7 @@ class LowerCovariance {
   }
 
  private:
-  Eigen::MatrixXd m_;
+  Matrix m_;
   int n_ = 0;
   int capacity_ = 0;
 };

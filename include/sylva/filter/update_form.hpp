@@ -29,6 +29,7 @@
 #include <algorithm>
 #include <vector>
 
+#include "sylva/core/deferred.hpp"
 #include "sylva/core/parallel.hpp"
 #include "sylva/detail/lower_rank_update.hpp"
 #include "sylva/detail/workspace.hpp"
@@ -39,32 +40,32 @@ namespace detail {
 /// Reusable buffers of an update (innovation, S, R, L^-1 nu, L^-1, the linearizations, the
 /// landmark iterates of an iterated update, the gain's n x cols matrix, the Joseph form's
 /// n x n posterior). Each grows only when a larger state or batch is seen, so an update
-/// allocates nothing in steady state.
+/// allocates nothing in steady state. A template only so that its bodies are compiled where it
+/// is used (core/deferred.hpp); every filter's is `BatchWorkspace<void>`.
+template <typename Tag = void>
 struct BatchWorkspace {
+  using Vector = Deferred<Eigen::VectorXd, Tag>;
+  using Matrix = Deferred<Eigen::MatrixXd, Tag>;
   enum Slot { kInnovation, kInnovationCovariance, kNoise, kWhitenedInnovation, kInverseFactor, kIterates, kSlotCount };
-  Eigen::VectorXd buffers[kSlotCount];
-  Eigen::VectorXd lins;
+  Vector buffers[kSlotCount];
+  Vector lins;
   std::vector<int> offsets;
-  Eigen::VectorXd gain;    ///< W = P H^T L^-T (a batch) or K = P H^T S^-1 (Joseph), n x cols
-  Eigen::VectorXd joseph;  ///< the Joseph form's n x n posterior, before it is copied into P
+  Vector gain;    ///< W = P H^T L^-T (a batch) or K = P H^T S^-1 (Joseph), n x cols
+  Vector joseph;  ///< the Joseph form's n x n posterior, before it is copied into P
 
-  Eigen::Map<Eigen::VectorXd> vector(Slot slot, int size) {
-    return Eigen::Map<Eigen::VectorXd>(grown(buffers[slot], size), size);
-  }
-  Eigen::Map<Eigen::MatrixXd> matrix(Slot slot, int rows) {
-    return Eigen::Map<Eigen::MatrixXd>(grown(buffers[slot], static_cast<Eigen::Index>(rows) * rows), rows, rows);
+  Eigen::Map<Vector> vector(Slot slot, int size) { return Eigen::Map<Vector>(grown(buffers[slot], size), size); }
+  Eigen::Map<Matrix> matrix(Slot slot, int rows) {
+    return Eigen::Map<Matrix>(grown(buffers[slot], static_cast<Eigen::Index>(rows) * rows), rows, rows);
   }
   /// The gain's n x cols matrix (cols = M, or `cols` for M = Eigen::Dynamic).
   template <int M>
   Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, M>> gainMatrix(int n, int cols) {
     return Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, M>>(grown(gain, static_cast<Eigen::Index>(n) * cols), n, cols);
   }
-  Eigen::Map<Eigen::MatrixXd> josephMatrix(int n) {
-    return Eigen::Map<Eigen::MatrixXd>(grown(joseph, static_cast<Eigen::Index>(n) * n), n, n);
-  }
+  Eigen::Map<Matrix> josephMatrix(int n) { return Eigen::Map<Matrix>(grown(joseph, static_cast<Eigen::Index>(n) * n), n, n); }
 
  private:
-  static double* grown(Eigen::VectorXd& buffer, Eigen::Index size) {
+  static double* grown(Vector& buffer, Eigen::Index size) {
     growWorkspace(buffer, size);
     return buffer.data();
   }
@@ -78,9 +79,9 @@ struct SymmetricUpdate {
   /// delta = W L^-1 nu with W = P H^T L^-T (L: the Cholesky factor of S), returning W for
   /// `downdate`. `PHt` (n x M) is P H^T; for a fixed M it is overwritten by W.
   /// With `parallel`, a batch's rows of W are shared among its threads (the same result).
-  template <int M, typename PHtMap, typename Llt, typename Nu, typename Delta>
+  template <int M, typename PHtMap, typename Llt, typename Nu, typename Workspace, typename Delta>
   static Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, M>> increment(PHtMap& PHt, const Llt& llt, const Nu& nu,
-                                                                         detail::BatchWorkspace& ws, Delta& delta,
+                                                                         Workspace& ws, Delta& delta,
                                                                          Parallel* parallel = nullptr) {
     const int n = static_cast<int>(PHt.rows());
     if constexpr (M == Eigen::Dynamic) {
@@ -88,10 +89,10 @@ struct SymmetricUpdate {
       // triangular solve on a tall n x km right-hand side is several times slower than a
       // GEMM. Row blocks keep Eigen's packed panels on the stack.
       const int cols = static_cast<int>(PHt.cols());
-      auto L_inv = ws.matrix(detail::BatchWorkspace::kInverseFactor, cols);
+      auto L_inv = ws.matrix(Workspace::kInverseFactor, cols);
       L_inv.setIdentity();
       llt.matrixL().solveInPlace(L_inv);
-      auto W = ws.gainMatrix<Eigen::Dynamic>(n, cols);
+      auto W = ws.template gainMatrix<Eigen::Dynamic>(n, cols);
       const int block = detail::lowerRankUpdateTile(cols);
       const int blocks = (n + block - 1) / block;
       const auto rowBlocks = [&](int first, int last) {
@@ -103,7 +104,7 @@ struct SymmetricUpdate {
       };
       const int parts = parallel != nullptr && n >= detail::kParallelMinRows ? parallel->concurrency() : 1;
       runRanges(parallel, blocks, parts, rowBlocks);
-      auto v = ws.vector(detail::BatchWorkspace::kWhitenedInnovation, cols);
+      auto v = ws.vector(Workspace::kWhitenedInnovation, cols);
       v.noalias() = L_inv * nu;
       delta.noalias() = W * v;
       return W;
@@ -137,11 +138,11 @@ struct JosephUpdate {
   static constexpr const char* kName = "JosephUpdate";
 
   /// delta = K nu with K = P H^T S^-1, returning K (kept in the workspace) for `posterior`.
-  template <int M, typename PHtMap, typename Llt, typename Nu, typename Delta>
+  template <int M, typename PHtMap, typename Llt, typename Nu, typename Workspace, typename Delta>
   static Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, M>> increment(const PHtMap& PHt, const Llt& llt, const Nu& nu,
-                                                                         detail::BatchWorkspace& ws, Delta& delta,
+                                                                         Workspace& ws, Delta& delta,
                                                                          Parallel* /*parallel: serial*/ = nullptr) {
-    auto K = ws.gainMatrix<M>(static_cast<int>(PHt.rows()), static_cast<int>(PHt.cols()));
+    auto K = ws.template gainMatrix<M>(static_cast<int>(PHt.rows()), static_cast<int>(PHt.cols()));
     K = PHt;
     llt.matrixU().template solveInPlace<Eigen::OnTheRight>(K);
     llt.matrixL().template solveInPlace<Eigen::OnTheRight>(K);
@@ -154,9 +155,9 @@ struct JosephUpdate {
   /// out = A H^T for an n x n matrix A; `PHt` is reused for it. Every product is taken here,
   /// before the filter writes anything: R K^T allocates (M x n), and for a large state the
   /// n x n products make Eigen take its packing buffers from the heap.
-  template <int M, typename PBlock, typename PHtMap, typename RMat, typename ApplyHt>
+  template <int M, typename PBlock, typename PHtMap, typename RMat, typename Workspace, typename ApplyHt>
   static Eigen::Map<Eigen::MatrixXd> posterior(const PBlock& P, const Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, M>>& K,
-                                               PHtMap& PHt, const RMat& R, detail::BatchWorkspace& ws, ApplyHt&& applyHt) {
+                                               PHtMap& PHt, const RMat& R, Workspace& ws, ApplyHt&& applyHt) {
     const Eigen::Matrix<double, M, Eigen::Dynamic> RKt = R * K.transpose();
     auto A = ws.josephMatrix(static_cast<int>(P.rows()));
     // A = (I - K H) P = P - K (P H^T)^T on the full matrix.

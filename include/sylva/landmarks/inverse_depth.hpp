@@ -101,11 +101,11 @@ struct InverseDepthToPoint3 {
     return InverseDepth::point<T>(l);
   }
 
-  template <int = 0>  // compiled only where called (docs/build-time.md)
+  template <typename Tag = void>  // compiled only where called (core/deferred.hpp)
   Vec<3> operator()(const Vec<Robot_::kDim>& /*robot*/,
                     const Vec<6>& l,
-                    JacobianRef<3, Robot_::kDim> J_to_x = {},
-                    JacobianRef<3, 6> J_to_l = {}) const {
+                    JacobianArg<3, Robot_::kDim, Tag> J_to_x = {},
+                    JacobianArg<3, 6, Tag> J_to_l = {}) const {
     if (!l.allFinite()) fail(ErrorCode::kNonFinite, "InverseDepthToPoint3: the landmark is not finite");
     const double rho = l[5];
     // rho <= 0 puts the point at infinity or behind its anchor: an estimate that has not

@@ -95,11 +95,11 @@ struct InverseDepthRadiusToTree {
     return tree;
   }
 
-  template <int = 0>  // compiled only where called (docs/build-time.md)
+  template <typename Tag = void>  // compiled only where called (core/deferred.hpp)
   Vec<4> operator()(const Vec<Robot_::kDim>& /*robot*/,
                     const Vec<7>& l,
-                    JacobianRef<4, Robot_::kDim> J_to_x = {},
-                    JacobianRef<4, 7> J_to_l = {}) const {
+                    JacobianArg<4, Robot_::kDim, Tag> J_to_x = {},
+                    JacobianArg<4, 7, Tag> J_to_l = {}) const {
     if (!l.allFinite())
       fail(ErrorCode::kNonFinite, "InverseDepthRadiusToTree: the landmark is not finite");
     const double rho = l[5];

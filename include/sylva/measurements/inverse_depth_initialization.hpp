@@ -135,11 +135,11 @@ struct InverseDepthInitialization {
   }
 
   /// The landmark [t, theta, phi, rho0] with J_l_x (6x7) and J_l_z (6x3).
-  template <int = 0>  // compiled only where called (docs/build-time.md)
+  template <typename Tag = void>  // compiled only where called (core/deferred.hpp)
   Vec<6> operator()(const Vec<7>& camera,
                     const Vec<3>& z,
-                    JacobianRef<6, 7> J_l_x = {},
-                    JacobianRef<6, 3> J_l_z = {}) const {
+                    JacobianArg<6, 7, Tag> J_l_x = {},
+                    JacobianArg<6, 3, Tag> J_l_z = {}) const {
     detail::PinholePointMath::checkCamera(camera, kName);
     if (!z.allFinite())
       fail(ErrorCode::kNonFinite, std::string(kName) + ": measurement is not finite");
@@ -175,8 +175,8 @@ struct InverseDepthInitialization {
       const Mat<4, 4> J_unit = (Mat<4, 4>::Identity() - q * q.transpose()) / q_norm;
       auto J = *J_l_x;
       J.setZero();
-      J.topLeftCorner<3, 3>().setIdentity();
-      J.block<2, 4>(3, 3) = J_angles_h * J_h_q * J_unit;
+      J.template topLeftCorner<3, 3>().setIdentity();
+      J.template block<2, 4>(3, 3) = J_angles_h * J_h_q * J_unit;
     }
     if (J_l_z) {
       Mat<3, 2> J_h_uv;
@@ -184,7 +184,7 @@ struct InverseDepthInitialization {
       J_h_uv.col(1) = R.col(1) / camera_.fy;
       auto J = *J_l_z;
       J.setZero();
-      J.block<2, 2>(3, 0) = J_angles_h * J_h_uv;
+      J.template block<2, 2>(3, 0) = J_angles_h * J_h_uv;
       J(5, 2) = 1.0;
     }
     return l;

@@ -157,11 +157,11 @@ struct InverseDepthTreeWidth {
   }
 
   /// Prediction with the analytic Jacobians J_z_x (3x7) and J_z_l (3x7).
-  template <int = 0>  // compiled only where called (docs/build-time.md)
+  template <typename Tag = void>  // compiled only where called (core/deferred.hpp)
   Vec<3> operator()(const Vec<7>& camera,
                     const Vec<7>& l,
-                    JacobianRef<3, 7> J_z_x = {},
-                    JacobianRef<3, 7> J_z_l = {}) const {
+                    JacobianArg<3, 7, Tag> J_z_x = {},
+                    JacobianArg<3, 7, Tag> J_z_l = {}) const {
     checkInputs(camera, l);
     const double rho = l[5];
     const Vec<3> anchor_from_camera = l.head<3>() - camera.head<3>();  // a - t
@@ -183,13 +183,13 @@ struct InverseDepthTreeWidth {
     if (J_z_x) {
       auto J = *J_z_x;
       J.setZero();
-      J.leftCols<3>() = -rho * J0_c;               // dc'/dt = -rho I
-      J.middleCols<4>(3) = J0_x.middleCols<4>(3);  // c' does not depend on q
+      J.template leftCols<3>() = -rho * J0_c;               // dc'/dt = -rho I
+      J.template middleCols<4>(3) = J0_x.middleCols<4>(3);  // c' does not depend on q
     }
     if (J_z_l) {
       auto J = *J_z_l;
-      J.leftCols<3>() = rho * J0_c;  // dc'/da = rho I
-      J.middleCols<2>(3) = J0_c * InverseDepth::directionJacobian(l[3], l[4]);
+      J.template leftCols<3>() = rho * J0_c;  // dc'/da = rho I
+      J.template middleCols<2>(3) = J0_c * InverseDepth::directionJacobian(l[3], l[4]);
       J.col(5) = J0_c * anchor_from_camera;  // dc'/drho = a - t
       J.col(6) = J0_l.col(3);                // d/dkappa
     }
@@ -282,11 +282,11 @@ struct InverseDepthRadiusInitialization {
   }
 
   /// The landmark [t, theta, phi, rho0, kappa] with J_l_x (7x7) and J_l_z (7x4).
-  template <int = 0>  // compiled only where called (docs/build-time.md)
+  template <typename Tag = void>  // compiled only where called (core/deferred.hpp)
   Vec<7> operator()(const Vec<7>& camera,
                     const Vec<4>& z,
-                    JacobianRef<7, 7> J_l_x = {},
-                    JacobianRef<7, 4> J_l_z = {}) const {
+                    JacobianArg<7, 7, Tag> J_l_x = {},
+                    JacobianArg<7, 4, Tag> J_l_z = {}) const {
     detail::PinholePointMath::checkCamera(camera, kName);
     if (!z.allFinite())
       fail(ErrorCode::kNonFinite, std::string(kName) + ": the measurement is not finite");
@@ -363,16 +363,16 @@ struct InverseDepthRadiusInitialization {
         J0_l.block<1, 3>(2, 0) * InverseDepth::directionJacobian(l6[3], l6[4]);
     if (J_l_x) {
       auto J = *J_l_x;
-      J.topRows<6>() = J6_x;
+      J.template topRows<6>() = J6_x;
       J.row(6).setZero();
-      J.block<1, 4>(6, 3) = -(J0_x.block<1, 4>(2, 3) + J_w_angles * J6_x.block<2, 4>(3, 3)) / J_w_k;
+      J.template block<1, 4>(6, 3) = -(J0_x.block<1, 4>(2, 3) + J_w_angles * J6_x.block<2, 4>(3, 3)) / J_w_k;
     }
     if (J_l_z) {
       auto J = *J_l_z;
       J.setZero();
-      J.block<6, 2>(0, 0) = J6_z.leftCols<2>();  // u, v
-      J.block<6, 1>(0, 3) = J6_z.col(2);         // rho0
-      J.block<1, 2>(6, 0) = -(J_w_angles * J6_z.block<2, 2>(3, 0)) / J_w_k;
+      J.template block<6, 2>(0, 0) = J6_z.leftCols<2>();  // u, v
+      J.template block<6, 1>(0, 3) = J6_z.col(2);         // rho0
+      J.template block<1, 2>(6, 0) = -(J_w_angles * J6_z.block<2, 2>(3, 0)) / J_w_k;
       J(6, 2) = 1.0 / J_w_k;
     }
     return l;

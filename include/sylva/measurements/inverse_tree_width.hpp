@@ -113,13 +113,13 @@ struct InverseTreeWidth {
   }
 
   /// The XYZ-R landmark [base, r] with J_to_x (4x7), J_to_l (4x3) and J_to_z (4x3).
-  template <int = 0>  // compiled only where called (docs/build-time.md)
+  template <typename Tag = void>  // compiled only where called (core/deferred.hpp)
   Vec<4> operator()(const Vec<7>& camera,
                     const Vec<3>& base,
                     const Vec<3>& z,
-                    JacobianRef<4, 7> J_to_x = {},
-                    JacobianRef<4, 3> J_to_l = {},
-                    JacobianRef<4, 3> J_to_z = {}) const {
+                    JacobianArg<4, 7, Tag> J_to_x = {},
+                    JacobianArg<4, 3, Tag> J_to_l = {},
+                    JacobianArg<4, 3, Tag> J_to_z = {}) const {
     if (!camera.allFinite()) fail(ErrorCode::kNonFinite, "InverseTreeWidth: the camera state is not finite");
     if (!base.allFinite()) fail(ErrorCode::kNonFinite, "InverseTreeWidth: the tree's base centre is not finite");
     if (!z.allFinite()) fail(ErrorCode::kNonFinite, "InverseTreeWidth: the measurement is not finite");
@@ -157,7 +157,7 @@ struct InverseTreeWidth {
     if (J_to_l) {
       auto J = *J_to_l;
       J.setZero();
-      J.topRows<3>().setIdentity();
+      J.template topRows<3>().setIdentity();
       J.row(3) = -J_z_l.block<1, 3>(2, 0) / J_w_r;
     }
     if (J_to_z) {

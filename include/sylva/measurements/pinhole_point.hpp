@@ -178,11 +178,11 @@ struct PinholePoint<Point3> {
   }
 
   /// Prediction with the analytic Jacobians J_z_x (2x7) and J_z_l (2x3).
-  template <int = 0>  // compiled only where called (docs/build-time.md)
+  template <typename Tag = void>  // compiled only where called (core/deferred.hpp)
   Vec<2> operator()(const Vec<7>& camera,
                     const Vec<3>& point,
-                    JacobianRef<2, 7> J_z_x = {},
-                    JacobianRef<2, 3> J_z_l = {}) const {
+                    JacobianArg<2, 7, Tag> J_z_x = {},
+                    JacobianArg<2, 3, Tag> J_z_l = {}) const {
     using Math = detail::PinholePointMath;
     checkInputs(camera, point);
     const Mat<3, 3> Rt = Math::worldToCamera<double>(camera);
@@ -195,8 +195,8 @@ struct PinholePoint<Point3> {
     if (J_z_x) {
       auto J = *J_z_x;
       J.setZero();
-      J.leftCols<3>() = -J_z_p;
-      J.middleCols<4>(3) =
+      J.template leftCols<3>() = -J_z_p;
+      J.template middleCols<4>(3) =
           J_z_h * Math::rotateTransposedJacobianNormalized(camera.segment<4>(Pose3D::kQuaternion), w);
     }
     if (J_z_l) *J_z_l = J_z_p;
@@ -246,11 +246,11 @@ struct PinholePoint<InverseDepth> {
   }
 
   /// Prediction with the analytic Jacobians J_z_x (2x7) and J_z_l (2x6).
-  template <int = 0>  // compiled only where called (docs/build-time.md)
+  template <typename Tag = void>  // compiled only where called (core/deferred.hpp)
   Vec<2> operator()(const Vec<7>& camera,
                     const Vec<6>& l,
-                    JacobianRef<2, 7> J_z_x = {},
-                    JacobianRef<2, 6> J_z_l = {}) const {
+                    JacobianArg<2, 7, Tag> J_z_x = {},
+                    JacobianArg<2, 6, Tag> J_z_l = {}) const {
     using Math = detail::PinholePointMath;
     checkInputs(camera, l);
     const Mat<3, 3> Rt = Math::worldToCamera<double>(camera);
@@ -265,14 +265,14 @@ struct PinholePoint<InverseDepth> {
     if (J_z_x) {
       auto J = *J_z_x;
       J.setZero();
-      J.leftCols<3>() = -rho * J_z_w;
-      J.middleCols<4>(3) =
+      J.template leftCols<3>() = -rho * J_z_w;
+      J.template middleCols<4>(3) =
           J_z_h * Math::rotateTransposedJacobianNormalized(camera.segment<4>(Pose3D::kQuaternion), w);
     }
     if (J_z_l) {
       auto J = *J_z_l;
-      J.leftCols<3>() = rho * J_z_w;
-      J.middleCols<2>(3) = J_z_w * InverseDepth::directionJacobian(l[3], l[4]);  // dm / d(theta, phi)
+      J.template leftCols<3>() = rho * J_z_w;
+      J.template middleCols<2>(3) = J_z_w * InverseDepth::directionJacobian(l[3], l[4]);  // dm / d(theta, phi)
       J.col(5) = J_z_w * anchor_offset;
     }
     return z;

@@ -43,6 +43,7 @@
 #include <string>
 
 #include "sylva/core/angles.hpp"
+#include "sylva/core/deferred.hpp"
 #include "sylva/core/error.hpp"
 #include "sylva/core/jacobian_ref.hpp"
 #include "sylva/core/scalar.hpp"
@@ -63,7 +64,8 @@ struct RangeBearing {
   RangeBearing() = default;
   /// A sensor at `sensor_in_robot` (m, robot frame x forward, y left), axes parallel to the
   /// robot's. Throws kNonFinite for a non-finite mount.
-  explicit RangeBearing(const Vec<2>& sensor_in_robot) : mount_(sensor_in_robot) {
+  template <typename Tag = void>  // compiled only where called (core/deferred.hpp)
+  explicit RangeBearing(const detail::Deferred<Vec<2>, Tag>& sensor_in_robot) : mount_(sensor_in_robot) {
     if (!mount_.allFinite()) fail(ErrorCode::kNonFinite, "RangeBearing: the sensor mount is not finite");
   }
   const Vec<2>& mount() const { return mount_; }
@@ -111,11 +113,11 @@ struct RangeBearing {
   }
 
   /// Prediction with the analytic Jacobians of eq. 2.30.
-  template <int = 0>  // compiled only where called (docs/build-time.md)
+  template <typename Tag = void>  // compiled only where called (core/deferred.hpp)
   Vec<2> operator()(const Vec<3>& robot,
                     const Vec<2>& landmark,
-                    JacobianRef<2, 3> J_z_x = {},
-                    JacobianRef<2, 2> J_z_l = {}) const {
+                    JacobianArg<2, 3, Tag> J_z_x = {},
+                    JacobianArg<2, 2, Tag> J_z_l = {}) const {
     const Vec<2> z = predict<double>(robot, landmark);
     const Vec<2> sensor = sensorPosition<double>(robot);
     const double dx = landmark[0] - sensor[0];
@@ -141,7 +143,7 @@ struct RangeBearing {
   }
 
  private:
-  Vec<2> mount_ = Vec<2>::Zero();
+  Vec<2> mount_{0.0, 0.0};
 };
 
 /// Landmark initialization from one range-bearing measurement (eq. 2.33):
@@ -170,11 +172,11 @@ struct InverseRangeBearing {
     return Vec<2, T>(sensor[0] + z[0] * cos(a), sensor[1] + z[0] * sin(a));
   }
 
-  template <int = 0>  // compiled only where called (docs/build-time.md)
+  template <typename Tag = void>  // compiled only where called (core/deferred.hpp)
   Vec<2> operator()(const Vec<3>& robot,
                     const Vec<2>& z,
-                    JacobianRef<2, 3> J_l_x = {},
-                    JacobianRef<2, 2> J_l_z = {}) const {
+                    JacobianArg<2, 3, Tag> J_l_x = {},
+                    JacobianArg<2, 2, Tag> J_l_z = {}) const {
     const double r = z[0];
     if (!std::isfinite(r) || !std::isfinite(z[1]))
       fail(ErrorCode::kNonFinite, "InverseRangeBearing: measurement is not finite");

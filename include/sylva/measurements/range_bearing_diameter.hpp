@@ -59,11 +59,11 @@ struct RangeBearingDiameter {
   }
 
   /// Prediction with the analytic Jacobians (see the file comment).
-  template <int = 0>  // compiled only where called (docs/build-time.md)
+  template <typename Tag = void>  // compiled only where called (core/deferred.hpp)
   Vec<3> operator()(const Vec<3>& robot,
                     const Vec<3>& landmark,
-                    JacobianRef<3, 3> J_z_x = {},
-                    JacobianRef<3, 3> J_z_l = {}) const {
+                    JacobianArg<3, 3, Tag> J_z_x = {},
+                    JacobianArg<3, 3, Tag> J_z_l = {}) const {
     Mat<2, 3> J_rb_x;
     Mat<2, 2> J_rb_l;
     const Vec<2> rb = range_bearing_(robot, Vec<2>(landmark.head<2>()), J_rb_x, J_rb_l);
@@ -107,11 +107,11 @@ struct InverseRangeBearingDiameter {
     return Vec<3, T>(centre[0], centre[1], T(0.5) * z[2]);
   }
 
-  template <int = 0>  // compiled only where called (docs/build-time.md)
+  template <typename Tag = void>  // compiled only where called (core/deferred.hpp)
   Vec<3> operator()(const Vec<3>& robot,
                     const Vec<3>& z,
-                    JacobianRef<3, 3> J_l_x = {},
-                    JacobianRef<3, 3> J_l_z = {}) const {
+                    JacobianArg<3, 3, Tag> J_l_x = {},
+                    JacobianArg<3, 3, Tag> J_l_z = {}) const {
     if (!z.allFinite()) fail(ErrorCode::kNonFinite, "InverseRangeBearingDiameter: measurement is not finite");
     if (!(z[2] > 0.0)) {
       std::ostringstream os;

@@ -122,11 +122,11 @@ struct TreeWidth {
   }
 
   /// Prediction with the analytic Jacobians J_z_x (3x7) and J_z_l (3x4).
-  template <int = 0>  // compiled only where called (docs/build-time.md)
+  template <typename Tag = void>  // compiled only where called (core/deferred.hpp)
   Vec<3> operator()(const Vec<7>& camera,
                     const Vec<4>& tree,
-                    JacobianRef<3, 7> J_z_x = {},
-                    JacobianRef<3, 4> J_z_l = {}) const {
+                    JacobianArg<3, 7, Tag> J_z_x = {},
+                    JacobianArg<3, 4, Tag> J_z_l = {}) const {
     const Vec<3> z = predict<double>(camera, tree);
     if (!J_z_x && !J_z_l) return z;
     const double q_norm = camera.segment<4>(Pose3D::kQuaternion).norm();
@@ -167,12 +167,12 @@ struct TreeWidth {
       const Mat<3, 4> J_C_q = rotateTransposedJacobian(q, delta) * J_unit;
       auto J = *J_z_x;
       J.setZero();
-      J.leftCols<3>() = -J_z_p.middleCols<3>(3) * Rt;
-      J.middleCols<4>(3) = J_z_p.leftCols<3>() * J_n_q + J_z_p.middleCols<3>(3) * J_C_q;
+      J.template leftCols<3>() = -J_z_p.middleCols<3>(3) * Rt;
+      J.template middleCols<4>(3) = J_z_p.leftCols<3>() * J_n_q + J_z_p.middleCols<3>(3) * J_C_q;
     }
     if (J_z_l) {
       auto J = *J_z_l;
-      J.leftCols<3>() = J_z_p.middleCols<3>(3) * Rt;
+      J.template leftCols<3>() = J_z_p.middleCols<3>(3) * Rt;
       J.col(3) = J_z_p.col(6);
     }
     return z;

@@ -93,12 +93,12 @@ struct Ackermann2D : Pose2D {
   }
 
   /// Propagates `x` over `dt` seconds under control `u` (see the file comment).
-  template <int = 0>  // compiled only where called (docs/build-time.md)
+  template <typename Tag = void>  // compiled only where called (core/deferred.hpp)
   State operator()(const State& x,
                    const Control& u,
                    double dt,
-                   JacobianRef<3, 3> J_x = {},
-                   JacobianRef<3, 2> J_n = {}) const {
+                   JacobianArg<3, 3, Tag> J_x = {},
+                   JacobianArg<3, 2, Tag> J_n = {}) const {
     double v_c = 0.0;
     double omega = 0.0;
     axleMotion(u[0], u[1], v_c, omega);

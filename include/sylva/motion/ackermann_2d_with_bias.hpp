@@ -22,6 +22,7 @@
 #include <cmath>
 
 #include "sylva/core/angles.hpp"
+#include "sylva/core/deferred.hpp"
 #include "sylva/core/jacobian_ref.hpp"
 #include "sylva/core/types.hpp"
 #include "sylva/motion/ackermann_2d.hpp"
@@ -44,18 +45,18 @@ struct Ackermann2DWithBias : Pose2DWithExtras<5> {
   const Ackermann2D& car() const { return car_; }
 
   /// Propagates `x` over `dt` under the measured control `u`.
-  template <int = 0>  // compiled only where called (docs/build-time.md)
-  State operator()(const State& x,
+  template <typename Tag = void>  // compiled only where called (core/deferred.hpp)
+  State operator()(const detail::Deferred<State, Tag>& x,
                    const Control& u,
                    double dt,
-                   JacobianRef<5, 5> J_x = {},
-                   JacobianRef<5, 4> J_n = {}) const {
+                   JacobianArg<5, 5, Tag> J_x = {},
+                   JacobianArg<5, 4, Tag> J_n = {}) const {
     const double scale = 1.0 + x[3];
     const Vec<2> corrected(u[0] * scale, u[1] + x[4]);
-    Mat<3, 3> J_pose;
-    Mat<3, 2> J_control;  // d pose' / d [v, alpha] at the corrected control
-    State next;
-    next.head<3>() = car_(Vec<3>(x.head<3>()), corrected, dt, J_pose, J_control);
+    detail::Deferred<Mat<3, 3>, Tag> J_pose;
+    detail::Deferred<Mat<3, 2>, Tag> J_control;  // d pose' / d [v, alpha] at the corrected control
+    detail::Deferred<State, Tag> next;
+    next.template head<3>() = car_(Vec<3>(x.template head<3>()), corrected, dt, J_pose, J_control);
     next[3] = x[3];
     next[4] = x[4];
     if (J_x) {

@@ -106,12 +106,12 @@ struct ConstantVelocity3D {
   }
 
   /// Mean prediction over `dt` seconds, with J_x and J_n when requested.
-  template <int = 0>  // compiled only where called (docs/build-time.md)
+  template <typename Tag = void>  // compiled only where called (core/deferred.hpp)
   State operator()(const State& x,
                    const Control& u,
                    double dt,
-                   JacobianRef<13, 13> J_x = {},
-                   JacobianRef<13, 6> J_n = {}) const {
+                   JacobianArg<13, 13, Tag> J_x = {},
+                   JacobianArg<13, 6, Tag> J_n = {}) const {
     const double q_norm = x.segment<4>(kQuaternion).norm();
     if (!(q_norm > 1e-12)) {
       std::ostringstream os;

@@ -45,12 +45,12 @@ struct Odometry2D : Pose2D {
   using Control = Vec<3>;
 
   /// Composes `x` with the increment `u` (`dt` is ignored, see the file comment).
-  template <int = 0>  // compiled only where called (docs/build-time.md)
+  template <typename Tag = void>  // compiled only where called (core/deferred.hpp)
   State operator()(const State& x,
                    const Control& u,
                    double /*dt*/,
-                   JacobianRef<3, 3> J_x = {},
-                   JacobianRef<3, 3> J_n = {}) const {
+                   JacobianArg<3, 3, Tag> J_x = {},
+                   JacobianArg<3, 3, Tag> J_n = {}) const {
     const double c = std::cos(x[2]);
     const double s = std::sin(x[2]);
     State next;

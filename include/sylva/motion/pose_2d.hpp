@@ -9,6 +9,7 @@
 #include <Eigen/Core>
 
 #include "sylva/core/angles.hpp"
+#include "sylva/core/deferred.hpp"
 #include "sylva/core/jacobian_ref.hpp"
 #include "sylva/core/types.hpp"
 
@@ -21,7 +22,10 @@ struct Pose2D {
   using State = Vec<3>;
 
   /// Brings a state back to its canonical range (theta in (-pi, pi]).
-  static void normalize(Eigen::Ref<State> x) { x[2] = wrapAngle(x[2]); }
+  template <typename Tag = void>  // compiled only where called (core/deferred.hpp), as below
+  static void normalize(Eigen::Ref<detail::Deferred<State, Tag>> x) {
+    x[2] = wrapAngle(x[2]);
+  }
 
   /// The state-transition Jacobian of first-estimates linearization (Huang, Mourikis and
   /// Roumeliotis 2010, "Observability-based rules for designing consistent EKF SLAM
@@ -30,15 +34,18 @@ struct Pose2D {
   /// linearization evaluates it with `from` the prior of the previous step x_{k|k-1} and `to`
   /// the new prediction x_{k+1|k}, instead of the posterior x_{k|k}. Every planar robot of
   /// sylva moves that way; one that does not (a world-frame drift, say) must hide this.
-  static Eigen::Matrix3d firstEstimatesJacobian(const State& from, const State& to) {
-    Eigen::Matrix3d J = Eigen::Matrix3d::Identity();
+  template <typename Tag = void>
+  static Eigen::Matrix3d firstEstimatesJacobian(const detail::Deferred<State, Tag>& from, const State& to) {
+    using Jacobian = detail::Deferred<Eigen::Matrix3d, Tag>;
+    Jacobian J = Jacobian::Identity();
     J(0, 2) = -(to[1] - from[1]);
     J(1, 2) = to[0] - from[0];
     return J;
   }
 
   /// Difference of two states with the angle wrapped, for errors and NEES.
-  static State difference(const State& a, const State& b) {
+  template <typename Tag = void>
+  static State difference(const detail::Deferred<State, Tag>& a, const State& b) {
     State d = a - b;
     d[2] = wrapAngle(d[2]);
     return d;

@@ -30,12 +30,12 @@ struct Unicycle2D : Pose2D {
   using Control = Vec<2>;
 
   /// Propagates `x` over `dt` seconds under control `u` (eq. 2.12-2.14).
-  template <int = 0>  // compiled only where called (docs/build-time.md)
+  template <typename Tag = void>  // compiled only where called (core/deferred.hpp)
   State operator()(const State& x,
                    const Control& u,
                    double dt,
-                   JacobianRef<3, 3> J_x = {},
-                   JacobianRef<3, 2> J_n = {}) const {
+                   JacobianArg<3, 3, Tag> J_x = {},
+                   JacobianArg<3, 2, Tag> J_n = {}) const {
     const double v = u[0];
     const double omega = u[1];
     const double heading = x[2] + 0.5 * dt * omega;

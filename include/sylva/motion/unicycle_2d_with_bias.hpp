@@ -26,6 +26,7 @@
 #include <Eigen/Core>
 
 #include "sylva/core/angles.hpp"
+#include "sylva/core/deferred.hpp"
 #include "sylva/core/jacobian_ref.hpp"
 #include "sylva/core/scalar.hpp"
 #include "sylva/core/types.hpp"
@@ -46,19 +47,19 @@ struct Unicycle2DWithBias : Pose2DWithExtras<6> {
   static double moving(const Control& u) { return u[0] != 0.0 || u[1] != 0.0 ? 1.0 : 0.0; }
 
   /// Propagates `x` over `dt` under the command `u`.
-  template <int = 0>  // compiled only where called (docs/build-time.md)
-  State operator()(const State& x,
+  template <typename Tag = void>  // compiled only where called (core/deferred.hpp)
+  State operator()(const detail::Deferred<State, Tag>& x,
                    const Control& u,
                    double dt,
-                   JacobianRef<6, 6> J_x = {},
-                   JacobianRef<6, 5> J_n = {}) const {
+                   JacobianArg<6, 6, Tag> J_x = {},
+                   JacobianArg<6, 5, Tag> J_n = {}) const {
     const double m = moving(u);
     const Vec<2> actual(u[0] * (1.0 + x[3]), u[1] * (1.0 + x[4]) + m * x[5]);
-    Mat<3, 3> J_pose;
-    Mat<3, 2> J_control;  // d pose' / d [v, w] at the actual motion
-    State next;
-    next.head<3>() = unicycle_(Vec<3>(x.head<3>()), actual, dt, J_pose, J_control);
-    next.tail<3>() = x.tail<3>();
+    detail::Deferred<Mat<3, 3>, Tag> J_pose;
+    detail::Deferred<Mat<3, 2>, Tag> J_control;  // d pose' / d [v, w] at the actual motion
+    detail::Deferred<State, Tag> next;
+    next.template head<3>() = unicycle_(Vec<3>(x.template head<3>()), actual, dt, J_pose, J_control);
+    next.template tail<3>() = x.template tail<3>();
     if (J_x) {
       (*J_x).setIdentity();
       (*J_x).template topLeftCorner<3, 3>() = J_pose;
