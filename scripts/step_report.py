@@ -401,6 +401,11 @@ def main():
         for o in builds[0]["objects"][:10]:
             md.append(f"| `{o['object']}` | {o['seconds']:.0f} |")
         md.append("")
+    else:
+        md.append("## Build time\n")
+        md.append("Not measured in this run (`SKIP_BUILD_TIME=1 bash scripts/run_benchmarks.sh`, or no "
+                  "`--build-times` JSON). [build-time.md](build-time.md) measures what including the headers "
+                  "costs a translation unit, with g++ and clang++.\n")
 
     with open(a.out, "w", encoding="utf-8") as f:
         f.write("\n".join(md).rstrip() + "\n")
