@@ -21,8 +21,10 @@
 # Usage: bash scripts/run_benchmarks.sh [BUILD_DIR]
 # Environment: REPETITIONS (default 5), JOBS (build jobs, default 2), SKIP_BUILD_TIME, SKIP_PEERS,
 # SKIP_COMPRESSED.
-# The whole run takes about 30 minutes on a 2-core machine (MRPT's dense filter at N = 2000
-# is a large part of it).
+# On a 2-core machine (2026-11-30): bench_slam_step alone took 36 minutes with its 5
+# repetitions, and the whole run without the build time (SKIP_BUILD_TIME=1) about an hour. The
+# build time adds two clean builds: g++ 12 spent more than 35 CPU-minutes on the unity unit
+# of tests/filter alone.
 set -euo pipefail
 
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"

@@ -9,8 +9,8 @@
 /// - `JosephUpdate`: P = (I - K H) P (I - K H)^T + K R K^T, which stays symmetric positive
 ///   semi-definite even for a sub-optimal gain. It is computed in product form on the full
 ///   matrix: mirror the lower triangle, A = (I - K H) P, then A - (A H^T) K^T + K R K^T, i.e.
-///   several full passes over P instead of half of one (7-10x the symmetric form's time at
-///   n = 100..2000 in docs/update-benchmarks.md).
+///   several full passes over P instead of half of one (several times the symmetric form's
+///   time: docs/update-benchmarks.md, column "Joseph / efficient update").
 ///
 /// Each form's kernels are templates on the measurement size M only (Eigen::Dynamic for a
 /// batch), not on the filter: every filter type with the same M shares them. The filter
