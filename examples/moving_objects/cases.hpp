@@ -28,6 +28,8 @@
 
 namespace moving_objects {
 
+using namespace sylva::laser;  // the detector and its scans (include/sylva/laser)
+
 using sylva::Id;
 using sylva::Vec;
 

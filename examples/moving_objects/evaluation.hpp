@@ -20,12 +20,13 @@
 #include <vector>
 
 #include <sylva/core/types.hpp>
+#include <sylva/laser/moving_object_detector.hpp>
 #include <sylva/sim/dynamic_scene_2d.hpp>
 #include <sylva/sim/laser_scanner_2d.hpp>
 
-#include "detector.hpp"
-
 namespace moving_objects {
+
+using namespace sylva::laser;  // the detector and its scans (include/sylva/laser)
 
 using sylva::Id;
 

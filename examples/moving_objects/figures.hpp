@@ -19,9 +19,9 @@
 
 #include <sylva/core/angles.hpp>
 #include <sylva/core/types.hpp>
+#include <sylva/laser/object_position.hpp>
 
 #include "../common/svg_plot.hpp"
-#include "object_position.hpp"
 
 namespace moving_objects::svg {
 

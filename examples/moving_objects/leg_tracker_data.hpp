@@ -26,10 +26,11 @@
 
 #include <sylva/core/error.hpp>
 #include <sylva/datasets/numeric_table.hpp>
-
-#include "scan.hpp"
+#include <sylva/laser/scan.hpp>
 
 namespace moving_objects {
+
+using namespace sylva::laser;  // the detector and its scans (include/sylva/laser)
 
 struct RealScans {
   ScanGeometry geometry;

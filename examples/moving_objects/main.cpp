@@ -44,18 +44,17 @@
 
 #include <sylva/consistency/chi_square.hpp>
 #include <sylva/core/error.hpp>
+#include <sylva/laser/moving_object_detector.hpp>
+#include <sylva/laser/object_tracker.hpp>
 #include <sylva/sim/laser_scanner_2d.hpp>
 
+#include "../common/cli_checks.hpp"
 #include "cases.hpp"
-#include "detector.hpp"
 #include "evaluation.hpp"
 #include "figures.hpp"
 #include "leg_tracker_data.hpp"
 #include "scenes.hpp"
 #include "slam_run.hpp"
-#include "tracker.hpp"
-#include "../common/cli_checks.hpp"
-
 
 #ifndef MOVING_OBJECTS_DEFAULT_DATA
 #define MOVING_OBJECTS_DEFAULT_DATA "../shared/data/laser-people-leg-tracker"
@@ -63,10 +62,10 @@
 
 namespace {
 
-using moving_objects::Detection;
-using moving_objects::DetectorOptions;
-using moving_objects::MovingObjectDetector;
-using moving_objects::ScanGeometry;
+using sylva::laser::Detection;
+using sylva::laser::DetectorOptions;
+using sylva::laser::MovingObjectDetector;
+using sylva::laser::ScanGeometry;
 using nlohmann::json;
 using sylva::Vec;
 
@@ -521,7 +520,7 @@ std::vector<double> backgroundModel(const moving_objects::RealScans& data) {
     std::vector<double> valid;
     for (const auto& scan : data.ranges) {
       const double r = scan[static_cast<std::size_t>(b)];
-      if (moving_objects::classifyReading(r, g) == moving_objects::Reading::kValid) valid.push_back(r);
+      if (sylva::laser::classifyReading(r, g) == sylva::laser::Reading::kValid) valid.push_back(r);
     }
     if (2 * valid.size() < data.ranges.size()) continue;
     const std::size_t k = (3 * valid.size()) / 4;
@@ -737,7 +736,7 @@ int runSimulation(const Options& o) {
                           {"per_scan", per_scan}};
     json vmin;
     for (const double r : {1.0, 2.0, 4.0, 8.0})
-      vmin[fixed(r, 0) + "m"] = moving_objects::minDetectableSpeed(g, detector.options().matching, r, dt);
+      vmin[fixed(r, 0) + "m"] = sylva::laser::minDetectableSpeed(g, detector.options().matching, r, dt);
     j["min_detectable_speed_mps"] = vmin;
     json jc = json::array();
     for (const CaseReport& c : cases)
@@ -822,7 +821,7 @@ int runSimulation(const Options& o) {
             << "   torso estimates (two legs together): " << scene.torsos << "; confirmed tracks: " << scene.confirmed_tracks
             << "\n   eq. 4.5, minimum detectable speed at dt = " << dt << " s:";
   for (const double r : {1.0, 2.0, 4.0, 8.0})
-    std::cout << " " << fixed(r, 0) << " m: " << fixed(moving_objects::minDetectableSpeed(g, detector.options().matching, r, dt), 2)
+    std::cout << " " << fixed(r, 0) << " m: " << fixed(sylva::laser::minDetectableSpeed(g, detector.options().matching, r, dt), 2)
               << " m/s;";
   std::cout << "\n\n2. The five cases of Sec. 4.3.4 (two scans 0.2 s apart)\n"
             << "   case  name                  readings  found  precision  M_C^s first  +A  +O  Alg.4  in full\n";

@@ -8,7 +8,7 @@
 //   1. predict with the odometry;
 //   2. place the scan in the world at the predicted pose, the previous scan at the previous
 //      estimate (the alignment the detector needs comes from the filter);
-//   3. extract point features (features.hpp);
+//   3. extract point features (sylva/laser/pole_features.hpp);
 //   4. with removal: run the detector on the two scans and drop every feature that shares
 //      a reading with a detected moving object; with `memory_s` > 0 also drop features
 //      within `memory_radius_m` of an object detected moving in the last memory_s seconds
@@ -38,6 +38,8 @@
 #include <sylva/consistency/nees.hpp>
 #include <sylva/filter/ekf.hpp>
 #include <sylva/landmarks/point2.hpp>
+#include <sylva/laser/moving_object_detector.hpp>
+#include <sylva/laser/pole_features.hpp>
 #include <sylva/measurements/range_bearing.hpp>
 #include <sylva/motion/unicycle_2d.hpp>
 #include <sylva/sim/laser_scanner_2d.hpp>
@@ -45,11 +47,11 @@
 #include <sylva/slam/front_end.hpp>
 #include <sylva/slam/reach.hpp>
 
-#include "detector.hpp"
-#include "features.hpp"
 #include "scenes.hpp"
 
 namespace moving_objects {
+
+using namespace sylva::laser;  // the detector and its scans (include/sylva/laser)
 
 using SlamFilter = sylva::Ekf<sylva::Unicycle2D, sylva::Point2>;
 

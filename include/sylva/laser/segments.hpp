@@ -1,19 +1,20 @@
 #pragma once
-// Stage 3 of the scan segmentation (Amarasinghe 2008, Sec. 4.3.2) and the Join operation of
-// Sec. 4.3.4.
-//
-// Continuous segments. The readings of one set (say M_C) are visited in beam order; two
-// consecutive members i < i' are in the same segment when
-//   - the beams between them hold no valid reading of another set (only no-return or
-//     invalid readings, at most `max_beam_gap` of them: a dropout does not cut an object),
-//   - and their points are closer than dd_s(r) = max(floor_s, k_s tan(resolution) r), the
-//     eq. 4.4 form with its own k (Sec. 4.3.3), r the smaller of the two ranges.
-//
-// Join(A, B). When an end of a segment a of A is within dd_s of an end of a segment b of B
-// (ends: the points of a segment's first and last beam), b is merged into a and removed
-// from B. Passes over all pairs repeat until B no longer shrinks.
-//
-// Every segment keeps its beams sorted, so its ends stay its extreme beams after a join.
+/// @file
+/// Stage 3 of the scan segmentation (Amarasinghe 2008, Sec. 4.3.2) and the Join operation of
+/// Sec. 4.3.4.
+///
+/// Continuous segments. The readings of one set (say M_C) are visited in beam order; two
+/// consecutive members i < i' are in the same segment when
+///   - the beams between them hold no valid reading of another set (only no-return or
+///     invalid readings, at most `max_beam_gap` of them: a dropout does not cut an object),
+///   - and their points are closer than dd_s(r) = max(floor_s, k_s tan(resolution) r), the
+///     eq. 4.4 form with its own k (Sec. 4.3.3), r the smaller of the two ranges.
+///
+/// Join(A, B). When an end of a segment a of A is within dd_s of an end of a segment b of B
+/// (ends: the points of a segment's first and last beam), b is merged into a and removed
+/// from B. Passes over all pairs repeat until B no longer shrinks.
+///
+/// Every segment keeps its beams sorted, so its ends stay its extreme beams after a join.
 
 #include <algorithm>
 #include <cmath>
@@ -21,12 +22,12 @@
 #include <sstream>
 #include <vector>
 
-#include <sylva/core/error.hpp>
+#include "sylva/core/error.hpp"
 
-#include "scan.hpp"
-#include "scan_matching.hpp"
+#include "sylva/laser/scan.hpp"
+#include "sylva/laser/scan_matching.hpp"
 
-namespace moving_objects {
+namespace sylva::laser {
 
 /// A continuous segment: beam indices of one scan, in increasing order.
 struct Segment {
@@ -128,4 +129,4 @@ inline int join(const ScanGeometry& g,
   return merged;
 }
 
-}  // namespace moving_objects
+}  // namespace sylva::laser

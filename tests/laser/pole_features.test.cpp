@@ -3,18 +3,18 @@
 #include <cmath>
 #include <vector>
 
-#include "moving_objects/features.hpp"
-#include "moving_objects/slam_run.hpp"
-
+#include <sylva/laser/pole_features.hpp>
 #include <sylva/sim/laser_scanner_2d.hpp>
 
-namespace unity_moving_objects_slam_features {
+#include "moving_objects/slam_run.hpp"  // the example's hall with poles and people
+
+namespace unity_laser_pole_features {
 
 using sylva::Vec;
 
-}  // namespace unity_moving_objects_slam_features
+}  // namespace unity_laser_pole_features
 
-using namespace unity_moving_objects_slam_features;
+using namespace unity_laser_pole_features;
 
 TEST_CASE("Point features: a pole's centre within centimetres, walls and wide things are no features", "[moving_objects]") {
   sylva::sim::LaserScene2D scene;
@@ -29,8 +29,8 @@ TEST_CASE("Point features: a pole's centre within centimetres, walls and wide th
     sylva::sim::Rng rng(seed);
     const Vec<3> pose(0.0, 0.0, 0.1);
     const auto scan = scanner.scan(pose, scene, rng);
-    const auto aligned = moving_objects::alignScan(g, scan.ranges_m, pose);
-    const auto features = moving_objects::extractPointFeatures(g, aligned, moving_objects::FeatureOptions{});
+    const auto aligned = sylva::laser::alignScan(g, scan.ranges_m, pose);
+    const auto features = sylva::laser::extractPointFeatures(g, aligned, sylva::laser::FeatureOptions{});
     REQUIRE(features.size() == 1);
     CHECK(moving_objects::majorityObject(scan, features[0].beams) == 1000);
     worst = std::max(worst, (features[0].world - Vec<2>(3.0, 1.0)).norm());

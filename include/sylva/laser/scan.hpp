@@ -1,17 +1,18 @@
 #pragma once
-// Laser scans as the moving-object detector sees them: the beam geometry shared by every
-// scan of one scanner, what each reading means, and a scan placed in the world frame with
-// the sensor pose it was taken from (the "alignment" the thesis assumes before detection,
-// Amarasinghe 2008 Sec. 4.3: the pose comes from the simulator, odometry or the filter).
-//
-// Readings. A range r of beam i is
-//   valid      range_min <= r <= range_max (finite);
-//   no return  r = +infinity or r > range_max: nothing within reach; the beam saw free
-//              space up to range_max (ROS reports "no return" as +inf);
-//   invalid    NaN, r < range_min (negative included): the scanner could not measure; the
-//              beam tells nothing, not even free space.
-// Only valid readings become points. This is a defined behaviour, not an error: real
-// scans hold both kinds (the leg-tracker data has 67 % inf and a few NaN).
+/// @file
+/// Laser scans as the moving-object detector sees them: the beam geometry shared by every
+/// scan of one scanner, what each reading means, and a scan placed in the world frame with
+/// the sensor pose it was taken from (the "alignment" the thesis assumes before detection,
+/// Amarasinghe 2008 Sec. 4.3: the pose comes from the simulator, odometry or the filter).
+///
+/// Readings. A range r of beam i is
+///   valid      range_min <= r <= range_max (finite);
+///   no return  r = +infinity or r > range_max: nothing within reach; the beam saw free
+///              space up to range_max (ROS reports "no return" as +inf);
+///   invalid    NaN, r < range_min (negative included): the scanner could not measure; the
+///              beam tells nothing, not even free space.
+/// Only valid readings become points. This is a defined behaviour, not an error: real
+/// scans hold both kinds (the leg-tracker data has 67 % inf and a few NaN).
 
 #include <algorithm>
 #include <cmath>
@@ -19,12 +20,11 @@
 #include <sstream>
 #include <vector>
 
-#include <sylva/core/error.hpp>
-#include <sylva/core/types.hpp>
+#include "sylva/core/error.hpp"
+#include "sylva/core/types.hpp"
 
-namespace moving_objects {
+namespace sylva::laser {
 
-using sylva::Vec;
 
 /// The beams of a scanner: beam i looks at angle_min + i * increment from the sensor's x
 /// axis (counter-clockwise positive).
@@ -117,4 +117,4 @@ inline double rangeThreshold(double k, double floor_m, double resolution_rad, do
   return std::max(floor_m, k * std::tan(resolution_rad) * range_m);
 }
 
-}  // namespace moving_objects
+}  // namespace sylva::laser

@@ -6,20 +6,22 @@
 #include <limits>
 #include <vector>
 
+#include <sylva/laser/moving_object_detector.hpp>
+#include <sylva/sim/laser_scanner_2d.hpp>
+
+// The five cases of the thesis and the scoring against the simulator's truth are the
+// example's (examples/moving_objects).
 #include "moving_objects/cases.hpp"
-#include "moving_objects/detector.hpp"
 #include "moving_objects/evaluation.hpp"
 #include "moving_objects/slam_run.hpp"
 
-#include <sylva/sim/laser_scanner_2d.hpp>
+namespace unity_laser_moving_object_detector {
 
-namespace unity_moving_objects_detector {
-
-using moving_objects::Detection;
-using moving_objects::DetectorOptions;
-using moving_objects::MovingObjectDetector;
-using moving_objects::PointSet;
-using moving_objects::ScanGeometry;
+using sylva::laser::Detection;
+using sylva::laser::DetectorOptions;
+using sylva::laser::MovingObjectDetector;
+using sylva::laser::PointSet;
+using sylva::laser::ScanGeometry;
 using moving_objects::ScriptedCase;
 using sylva::ErrorCode;
 using sylva::Id;
@@ -64,9 +66,9 @@ bool recoveredInFull(const CaseRun& r) {
          r.scores.on_moving_found == r.object_readings && r.scores.reported == r.object_readings;
 }
 
-}  // namespace unity_moving_objects_detector
+}  // namespace unity_laser_moving_object_detector
 
-using namespace unity_moving_objects_detector;
+using namespace unity_laser_moving_object_detector;
 
 TEST_CASE("Five cases of Sec. 4.3.4: each moving object is recovered in full, noiseless and noisy", "[moving_objects]") {
   for (const ScriptedCase& c : moving_objects::fiveCases()) {
@@ -172,9 +174,9 @@ TEST_CASE("A static scene seen from a moving robot gives (almost) no detections"
   const MovingObjectDetector detector(data.geometry);
   int pairs = 0, with_false = 0;
   long long reported = 0, valid = 0;
-  auto previous = moving_objects::alignScan(data.geometry, data.scans[0].ranges_m, data.scene.trajectory.startPose());
+  auto previous = sylva::laser::alignScan(data.geometry, data.scans[0].ranges_m, data.scene.trajectory.startPose());
   for (std::size_t k = 0; k < data.truth.size(); ++k) {
-    const auto current = moving_objects::alignScan(data.geometry, data.scans[k + 1].ranges_m, data.truth[k].true_pose);
+    const auto current = sylva::laser::alignScan(data.geometry, data.scans[k + 1].ranges_m, data.truth[k].true_pose);
     const Detection d = detector.detect(previous, current, data.scene.trajectory.dt());
     ++pairs;
     with_false += d.objects.empty() ? 0 : 1;
@@ -192,12 +194,12 @@ TEST_CASE("A static scene seen from a moving robot gives (almost) no detections"
 
 TEST_CASE("Detector: eq. 4.4 threshold and eq. 4.5 minimum detectable speed", "[moving_objects]") {
   const double res = 0.5 * sylva::kPi / 180.0;
-  CHECK(moving_objects::rangeThreshold(3.0, 0.0, res, 2.0) == Approx(3.0 * std::tan(sylva::kPi / 360.0) * 2.0));
-  CHECK(moving_objects::rangeThreshold(3.0, 0.04, res, 1.0) == Approx(0.04));  // the floor
+  CHECK(sylva::laser::rangeThreshold(3.0, 0.0, res, 2.0) == Approx(3.0 * std::tan(sylva::kPi / 360.0) * 2.0));
+  CHECK(sylva::laser::rangeThreshold(3.0, 0.04, res, 1.0) == Approx(0.04));  // the floor
   const ScanGeometry g{-sylva::kPi / 2, res, 361, 0.05, 8.0};
-  moving_objects::MatchingOptions m;
+  sylva::laser::MatchingOptions m;
   m.match_floor_m = 0.0;
-  CHECK(moving_objects::minDetectableSpeed(g, m, 4.0, 0.2) == Approx(3.0 * std::tan(res) * 4.0 / 0.2));
+  CHECK(sylva::laser::minDetectableSpeed(g, m, 4.0, 0.2) == Approx(3.0 * std::tan(res) * 4.0 / 0.2));
 }
 
 TEST_CASE("Algorithm 2 by hand: in front of the old surface is M_C, behind it is O_C", "[moving_objects]") {

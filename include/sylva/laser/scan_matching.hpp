@@ -1,47 +1,48 @@
 #pragma once
-// Stages 1 and 2 of the laser scan segmentation of Amarasinghe 2008, Sec. 4.3.2: two aligned
-// scans, the previous L_P and the current L_C, are split into the sets of eq. 4.1-4.2,
-//
-//   L_P = A_P + O_P + M_P + N_P,     L_C = A_C + O_C + M_C + N_C,
-//
-// A: the same stationary surface seen in both scans; M: a moving object, not hidden by the
-// other scan; O: what the other scan's moving object hid (or will hide); N: the rest.
-//
-// Stage 1 (eq. 4.3, closest points). A reading of one scan whose closest point in the other
-// scan lies within dd_c(r) = max(floor, k tan(resolution) r) (eq. 4.4, r the reading's own
-// range) is in A. What is left are B_C = O_C + M_C + N_C and B_P = O_P + M_P + N_P.
-//
-// Stage 2 (Algorithm 2). For each B_C^i, the B_P^j closest to the scan line of B_C^i (the ray
-// from the current sensor position through B_C^i) is looked for among those within a
-// perpendicular distance dd_l(t) = max(floor_l, k_l tan(resolution) t) of it, t the distance
-// along the ray. Comparing ranges from the current sensor position:
-//
-//   r(B_C^i) < r(B_P^j):  B_C^i in M_C and B_P^j in O_P  (something now stands in front
-//                         of where the previous scan saw a surface);
-//   r(B_C^i) > r(B_P^j):  B_C^i in O_C and B_P^j in M_P  (the previous scan saw something
-//                         in front of a surface that is now visible).
-//
-// The thesis prints observation 3 of Sec. 4.3.1 as r(O_P) < r(M_C); Algorithm 2 (and the
-// geometry: the O_P surface is behind the moving object) says r(O_P) > r(M_C), which is what
-// is implemented.
-//
-// Extension (free space, on by default; `free_space = false` gives the thesis' algorithm):
-// a B_C^i with no B_P^j near its scan line would be N_C. If the previous scan looked in
-// B_C^i's direction and saw farther (its readings on the three beams nearest that direction,
-// seen from the previous pose, are all no-return or beyond B_C^i by more than dd_c), B_C^i
-// stands in space the previous scan saw free, and is put in M_C. Without it a person walking
-// in front of open space (no return behind them; 67 % of the leg-tracker data's readings) is
-// never detected, because no B_P^j exists behind them. It also recovers the edge readings of
-// an object in front of a wall: the wall readings the previous scan had there are usually in
-// A_P, matched by eq. 4.4 to wall readings a beam or two away in the current scan, so they
-// are not in B_P and Algorithm 2 finds nothing on the scan line. With the printed algorithm
-// (free_space = false) the scripted cases lose 1-4 edge readings each and only case 3 is
-// recovered in full. "No return" is trusted only for readings closer than
-// `free_space_max_range_fraction` (0.8) of range_max, for two reasons: real scanners lose
-// weak returns near their maximum range (the leg-tracker background at 4.3-5.5 m of 5.6 m
-// flickers between a reading and "no return"), and from a moving robot a static object that
-// has just come within range was "no return" in the previous scan (with 1.0 the static
-// check of the program finds 4 false objects in 480 scan pairs instead of 0).
+/// @file
+/// Stages 1 and 2 of the laser scan segmentation of Amarasinghe 2008, Sec. 4.3.2: two aligned
+/// scans, the previous L_P and the current L_C, are split into the sets of eq. 4.1-4.2,
+///
+///   L_P = A_P + O_P + M_P + N_P,     L_C = A_C + O_C + M_C + N_C,
+///
+/// A: the same stationary surface seen in both scans; M: a moving object, not hidden by the
+/// other scan; O: what the other scan's moving object hid (or will hide); N: the rest.
+///
+/// Stage 1 (eq. 4.3, closest points). A reading of one scan whose closest point in the other
+/// scan lies within dd_c(r) = max(floor, k tan(resolution) r) (eq. 4.4, r the reading's own
+/// range) is in A. What is left are B_C = O_C + M_C + N_C and B_P = O_P + M_P + N_P.
+///
+/// Stage 2 (Algorithm 2). For each B_C^i, the B_P^j closest to the scan line of B_C^i (the ray
+/// from the current sensor position through B_C^i) is looked for among those within a
+/// perpendicular distance dd_l(t) = max(floor_l, k_l tan(resolution) t) of it, t the distance
+/// along the ray. Comparing ranges from the current sensor position:
+///
+///   r(B_C^i) < r(B_P^j):  B_C^i in M_C and B_P^j in O_P  (something now stands in front
+///                         of where the previous scan saw a surface);
+///   r(B_C^i) > r(B_P^j):  B_C^i in O_C and B_P^j in M_P  (the previous scan saw something
+///                         in front of a surface that is now visible).
+///
+/// The thesis prints observation 3 of Sec. 4.3.1 as r(O_P) < r(M_C); Algorithm 2 (and the
+/// geometry: the O_P surface is behind the moving object) says r(O_P) > r(M_C), which is what
+/// is implemented.
+///
+/// Extension (free space, on by default; `free_space = false` gives the thesis' algorithm):
+/// a B_C^i with no B_P^j near its scan line would be N_C. If the previous scan looked in
+/// B_C^i's direction and saw farther (its readings on the three beams nearest that direction,
+/// seen from the previous pose, are all no-return or beyond B_C^i by more than dd_c), B_C^i
+/// stands in space the previous scan saw free, and is put in M_C. Without it a person walking
+/// in front of open space (no return behind them; 67 % of the leg-tracker data's readings) is
+/// never detected, because no B_P^j exists behind them. It also recovers the edge readings of
+/// an object in front of a wall: the wall readings the previous scan had there are usually in
+/// A_P, matched by eq. 4.4 to wall readings a beam or two away in the current scan, so they
+/// are not in B_P and Algorithm 2 finds nothing on the scan line. With the printed algorithm
+/// (free_space = false) the scripted cases lose 1-4 edge readings each and only case 3 is
+/// recovered in full. "No return" is trusted only for readings closer than
+/// `free_space_max_range_fraction` (0.8) of range_max, for two reasons: real scanners lose
+/// weak returns near their maximum range (the leg-tracker background at 4.3-5.5 m of 5.6 m
+/// flickers between a reading and "no return"), and from a moving robot a static object that
+/// has just come within range was "no return" in the previous scan (with 1.0 the static
+/// check of the program finds 4 false objects in 480 scan pairs instead of 0).
 
 #include <algorithm>
 #include <cmath>
@@ -50,12 +51,12 @@
 #include <sstream>
 #include <vector>
 
-#include <sylva/core/angles.hpp>
-#include <sylva/core/error.hpp>
+#include "sylva/core/angles.hpp"
+#include "sylva/core/error.hpp"
 
-#include "scan.hpp"
+#include "sylva/laser/scan.hpp"
 
-namespace moving_objects {
+namespace sylva::laser {
 
 /// The set of eq. 4.1-4.2 a reading belongs to; kNone for readings that are not valid.
 enum class PointSet : std::uint8_t { kNone, kA, kM, kO, kN };
@@ -244,4 +245,4 @@ inline SetClassification classifyScans(const ScanGeometry& g,
   return out;
 }
 
-}  // namespace moving_objects
+}  // namespace sylva::laser

@@ -1,26 +1,27 @@
 #pragma once
-// From detected objects to people and tracks (for the pictures and the real-data counts;
-// not part of the thesis' detector).
-//
-// People: detected objects whose hull centroids are within `pair_distance_m` of each other
-// are grouped (single linkage); a group is one person candidate at the mean of its
-// centroids. Like the black stars of the thesis' Fig. 4.9, a group of two legs is the
-// "possible torso position".
-//
-// Tracks: global nearest neighbour, greedily: the (track, candidate) pairs within
-// `gate_m` are taken in order of increasing distance; an unpaired candidate starts a track;
-// a track missing for more than `max_misses` scans ends. A track is confirmed once it has
-// `confirm_hits` candidates. Deterministic.
+/// @file
+/// From detected objects to people and tracks (for the pictures and the real-data counts;
+/// not part of the thesis' detector).
+///
+/// People: detected objects whose hull centroids are within `pair_distance_m` of each other
+/// are grouped (single linkage); a group is one person candidate at the mean of its
+/// centroids. Like the black stars of the thesis' Fig. 4.9, a group of two legs is the
+/// "possible torso position".
+///
+/// Tracks: global nearest neighbour, greedily: the (track, candidate) pairs within
+/// `gate_m` are taken in order of increasing distance; an unpaired candidate starts a track;
+/// a track missing for more than `max_misses` scans ends. A track is confirmed once it has
+/// `confirm_hits` candidates. Deterministic.
 
 #include <algorithm>
 #include <tuple>
 #include <vector>
 
-#include <sylva/core/types.hpp>
+#include "sylva/core/types.hpp"
 
-#include "detector.hpp"
+#include "sylva/laser/moving_object_detector.hpp"
 
-namespace moving_objects {
+namespace sylva::laser {
 
 struct PersonCandidate {
   Vec<2> position;
@@ -129,4 +130,4 @@ class NearestNeighborTracker {
   std::vector<Track> tracks_;
 };
 
-}  // namespace moving_objects
+}  // namespace sylva::laser

@@ -1,28 +1,28 @@
 #pragma once
-// Position of a detected object from its readings (Amarasinghe 2008, Sec. 4.4.1): the
-// centroid of the convex hull of the segment's points, or the bounding rectangle.
-//
-// Convex hull: Andrew's monotone chain, counter-clockwise, collinear points dropped.
-// Centroid: the area centroid of the hull polygon,
-//   A = 1/2 sum (x_k y_k+1 - x_k+1 y_k),  c = 1/(6 A) sum (p_k + p_k+1)(x_k y_k+1 - x_k+1 y_k);
-// when the hull has no area (one point, or all points on a line, as for a flat board seen
-// edge-on) the centroid of the hull is the midpoint of its extreme points.
-// Bounding rectangle: axis-aligned in the world frame, as drawn in the thesis' Fig. 4.9.
-//
-// Both see only the side of the object that faces the scanner, so both lie nearer to the
-// scanner than the object's true centre: for a leg of radius r the hull centroid is about
-// r/2 to 2r/3 short of the centre. The thesis says so too ("only an approximate position").
+/// @file
+/// Position of a detected object from its readings (Amarasinghe 2008, Sec. 4.4.1): the
+/// centroid of the convex hull of the segment's points, or the bounding rectangle.
+///
+/// Convex hull: Andrew's monotone chain, counter-clockwise, collinear points dropped.
+/// Centroid: the area centroid of the hull polygon,
+///   A = 1/2 sum (x_k y_k+1 - x_k+1 y_k),  c = 1/(6 A) sum (p_k + p_k+1)(x_k y_k+1 - x_k+1 y_k);
+/// when the hull has no area (one point, or all points on a line, as for a flat board seen
+/// edge-on) the centroid of the hull is the midpoint of its extreme points.
+/// Bounding rectangle: axis-aligned in the world frame, as drawn in the thesis' Fig. 4.9.
+///
+/// Both see only the side of the object that faces the scanner, so both lie nearer to the
+/// scanner than the object's true centre: for a leg of radius r the hull centroid is about
+/// r/2 to 2r/3 short of the centre. The thesis says so too ("only an approximate position").
 
 #include <algorithm>
 #include <cmath>
 #include <vector>
 
-#include <sylva/core/error.hpp>
-#include <sylva/core/types.hpp>
+#include "sylva/core/error.hpp"
+#include "sylva/core/types.hpp"
 
-namespace moving_objects {
+namespace sylva::laser {
 
-using sylva::Vec;
 
 /// Convex hull of `points`, counter-clockwise, without collinear points. Empty input ->
 /// kInvalidArgument.
@@ -98,4 +98,4 @@ inline Box2 boundingBox(const std::vector<Vec<2>>& points) {
   return box;
 }
 
-}  // namespace moving_objects
+}  // namespace sylva::laser

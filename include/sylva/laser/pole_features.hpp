@@ -1,33 +1,34 @@
 #pragma once
-// Point features for 2D range-bearing SLAM from one laser scan: small, free-standing,
-// roughly circular segments (poles, trunks and, unavoidably, legs), each turned into a
-// [range, bearing] measurement of its centre.
-//
-// A feature is a continuous segment of the scan's valid readings (segments.hpp thresholds)
-// that
-//   - has at least `min_points` readings,
-//   - has a chord (first to last point) of at most `max_width_m`,
-//   - stands free: the beams just outside it are no-return, or read farther than the
-//     segment's nearest reading by at least `min_depth_gap_m` (a piece of wall cut by
-//     occlusion fails this on one side), and the segment is not at the edge of the scan.
-//
-// Centre estimate. For a disc of radius r the readings lie on its near arc. The radius is
-// estimated as r^ = (chord + one beam spacing at that range) / 2 (the extreme readings lie
-// up to a beam inside the silhouette), clamped to [min_radius_m, max_width_m / 2]; the
-// centre is r^ beyond the median range of the segment's middle third, on the bearing
-// halfway between the first and last beams.
+/// @file
+/// Point features for 2D range-bearing SLAM from one laser scan: small, free-standing,
+/// roughly circular segments (poles, trunks and, unavoidably, legs), each turned into a
+/// [range, bearing] measurement of its centre.
+///
+/// A feature is a continuous segment of the scan's valid readings (segments.hpp thresholds)
+/// that
+///   - has at least `min_points` readings,
+///   - has a chord (first to last point) of at most `max_width_m`,
+///   - stands free: the beams just outside it are no-return, or read farther than the
+///     segment's nearest reading by at least `min_depth_gap_m` (a piece of wall cut by
+///     occlusion fails this on one side), and the segment is not at the edge of the scan.
+///
+/// Centre estimate. For a disc of radius r the readings lie on its near arc. The radius is
+/// estimated as r^ = (chord + one beam spacing at that range) / 2 (the extreme readings lie
+/// up to a beam inside the silhouette), clamped to [min_radius_m, max_width_m / 2]; the
+/// centre is r^ beyond the median range of the segment's middle third, on the bearing
+/// halfway between the first and last beams.
 
 #include <algorithm>
 #include <cmath>
 #include <vector>
 
-#include <sylva/core/angles.hpp>
-#include <sylva/core/types.hpp>
+#include "sylva/core/angles.hpp"
+#include "sylva/core/types.hpp"
 
-#include "scan.hpp"
-#include "segments.hpp"
+#include "sylva/laser/scan.hpp"
+#include "sylva/laser/segments.hpp"
 
-namespace moving_objects {
+namespace sylva::laser {
 
 struct FeatureOptions {
   SegmentOptions segments{3.0, 0.06, 1};
@@ -85,4 +86,4 @@ inline std::vector<PointFeature> extractPointFeatures(const ScanGeometry& g,
   return out;
 }
 
-}  // namespace moving_objects
+}  // namespace sylva::laser

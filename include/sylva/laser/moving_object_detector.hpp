@@ -1,36 +1,37 @@
 #pragma once
-// The laser moving-object detector of Amarasinghe 2008, chapter 4 (Sec. 4.3-4.4), on two
-// scans of one scanner aligned in the world frame by their sensor poses:
-//
-//   1. closest points (eq. 4.3, threshold eq. 4.4)          -> A_C, A_P; B_C, B_P
-//   2. Algorithm 2 (scan lines and ranges)                  -> M_C, O_C, N_C (and _P)
-//   3. continuous segments of M_C, O_C, A_C                  -> M_C^s, O_C^s, A_C^s;
-//      segments of M_C^s shorter than `min_seed_points` (2) are dropped here already unless
-//      they stand more than `seed_gap_factor` (3) dd_c in front of what the previous scan saw
-//      on their scan line: a single reading pushed out of its match by range noise would
-//      otherwise Join a whole wall of A_C^s in step 4, while the one-reading leading edge of
-//      an object sliding sideways (case 5) stands far in front of the old background (not
-//      in the thesis, which filters by size only at the end)
-//   4. Algorithm 3: if M_C^s is not empty,
-//        M_C^s <- Join(M_C^s, A_C^s), then M_C^s <- Join(M_C^s, O_C^s)   (cases 2 and 5)
-//   5. Algorithm 4: if M_C^s is empty and O_C^s is not, M_C^s <- O_C^s   (case 3), only
-//      when O_C^s holds at most `replace_max_o_segments` segments of the minimum size (the
-//      thesis: "only when one moving object is present ... detected from the number of
-//      segments in O_C^s"); then segments of M_C^s whose ends touch are merged (they are one
-//      continuous segment once the joins filled the gap between them)
-//   6. segments of M_C^s with fewer than `min_segment_points` readings are dropped
-//      (Sec. 4.4.1, false positives)
-//   7. each remaining segment is an object: the centroid of its convex hull and its bounding
-//      rectangle (Sec. 4.4.1), its range from the scanner, and the minimum relative speed
-//      it must have had to be detected, V_min = dd_c(r) / dt (eq. 4.5).
-//
-// See scan_matching.hpp and segments.hpp for the details and where this departs from the
-// printed thesis (observation 3's inequality, the free-space extension, thresholds with a
-// floor). Everything is deterministic.
-//
-// Bad input: scans whose sizes differ from the geometry's beam count -> kInvalidArgument;
-// a non-finite pose -> kNonFinite; dt <= 0 or not finite, nonsense options ->
-// kInvalidArgument. NaN, infinite and out-of-range readings are not errors (scan.hpp).
+/// @file
+/// The laser moving-object detector of Amarasinghe 2008, chapter 4 (Sec. 4.3-4.4), on two
+/// scans of one scanner aligned in the world frame by their sensor poses:
+///
+///   1. closest points (eq. 4.3, threshold eq. 4.4)          -> A_C, A_P; B_C, B_P
+///   2. Algorithm 2 (scan lines and ranges)                  -> M_C, O_C, N_C (and _P)
+///   3. continuous segments of M_C, O_C, A_C                  -> M_C^s, O_C^s, A_C^s;
+///      segments of M_C^s shorter than `min_seed_points` (2) are dropped here already unless
+///      they stand more than `seed_gap_factor` (3) dd_c in front of what the previous scan saw
+///      on their scan line: a single reading pushed out of its match by range noise would
+///      otherwise Join a whole wall of A_C^s in step 4, while the one-reading leading edge of
+///      an object sliding sideways (case 5) stands far in front of the old background (not
+///      in the thesis, which filters by size only at the end)
+///   4. Algorithm 3: if M_C^s is not empty,
+///        M_C^s <- Join(M_C^s, A_C^s), then M_C^s <- Join(M_C^s, O_C^s)   (cases 2 and 5)
+///   5. Algorithm 4: if M_C^s is empty and O_C^s is not, M_C^s <- O_C^s   (case 3), only
+///      when O_C^s holds at most `replace_max_o_segments` segments of the minimum size (the
+///      thesis: "only when one moving object is present ... detected from the number of
+///      segments in O_C^s"); then segments of M_C^s whose ends touch are merged (they are one
+///      continuous segment once the joins filled the gap between them)
+///   6. segments of M_C^s with fewer than `min_segment_points` readings are dropped
+///      (Sec. 4.4.1, false positives)
+///   7. each remaining segment is an object: the centroid of its convex hull and its bounding
+///      rectangle (Sec. 4.4.1), its range from the scanner, and the minimum relative speed
+///      it must have had to be detected, V_min = dd_c(r) / dt (eq. 4.5).
+///
+/// See scan_matching.hpp and segments.hpp for the details and where this departs from the
+/// printed thesis (observation 3's inequality, the free-space extension, thresholds with a
+/// floor). Everything is deterministic.
+///
+/// Bad input: scans whose sizes differ from the geometry's beam count -> kInvalidArgument;
+/// a non-finite pose -> kNonFinite; dt <= 0 or not finite, nonsense options ->
+/// kInvalidArgument. NaN, infinite and out-of-range readings are not errors (scan.hpp).
 
 #include <algorithm>
 #include <cmath>
@@ -38,15 +39,15 @@
 #include <sstream>
 #include <vector>
 
-#include <sylva/core/error.hpp>
-#include <sylva/core/types.hpp>
+#include "sylva/core/error.hpp"
+#include "sylva/core/types.hpp"
 
-#include "object_position.hpp"
-#include "scan.hpp"
-#include "scan_matching.hpp"
-#include "segments.hpp"
+#include "sylva/laser/object_position.hpp"
+#include "sylva/laser/scan.hpp"
+#include "sylva/laser/scan_matching.hpp"
+#include "sylva/laser/segments.hpp"
 
-namespace moving_objects {
+namespace sylva::laser {
 
 struct DetectorOptions {
   MatchingOptions matching;
@@ -234,4 +235,4 @@ class MovingObjectDetector {
   DetectorOptions options_;
 };
 
-}  // namespace moving_objects
+}  // namespace sylva::laser

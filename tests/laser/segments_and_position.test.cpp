@@ -6,23 +6,23 @@
 #include <limits>
 #include <vector>
 
-#include "moving_objects/object_position.hpp"
-#include "moving_objects/segments.hpp"
-#include "moving_objects/tracker.hpp"
+#include <sylva/laser/object_position.hpp>
+#include <sylva/laser/segments.hpp>
+#include <sylva/laser/object_tracker.hpp>
 
-namespace unity_moving_objects_segments_and_position {
+namespace unity_laser_segments_and_position {
 
-using moving_objects::PointSet;
-using moving_objects::ScanGeometry;
-using moving_objects::Segment;
-using moving_objects::SegmentOptions;
+using sylva::laser::PointSet;
+using sylva::laser::ScanGeometry;
+using sylva::laser::Segment;
+using sylva::laser::SegmentOptions;
 using sylva::Vec;
 
 const ScanGeometry kGeometry{-sylva::kPi / 2, sylva::kPi / 180.0, 181, 0.05, 10.0};
 
 /// A scan at the origin; every beam reads `ranges[i]`.
-moving_objects::AlignedScan scanOf(const std::vector<double>& ranges) {
-  return moving_objects::alignScan(kGeometry, ranges, Vec<3>::Zero());
+sylva::laser::AlignedScan scanOf(const std::vector<double>& ranges) {
+  return sylva::laser::alignScan(kGeometry, ranges, Vec<3>::Zero());
 }
 
 std::vector<PointSet> setOf(int n, std::initializer_list<std::pair<int, int>> spans) {
@@ -32,9 +32,9 @@ std::vector<PointSet> setOf(int n, std::initializer_list<std::pair<int, int>> sp
   return sets;
 }
 
-}  // namespace unity_moving_objects_segments_and_position
+}  // namespace unity_laser_segments_and_position
 
-using namespace unity_moving_objects_segments_and_position;
+using namespace unity_laser_segments_and_position;
 
 TEST_CASE("Segments: consecutive members close in space, dropouts bridged, range jumps cut", "[moving_objects]") {
   std::vector<double> ranges(181, 5.0);
@@ -44,7 +44,7 @@ TEST_CASE("Segments: consecutive members close in space, dropouts bridged, range
   const auto scan = scanOf(ranges);
   auto sets = setOf(181, {{20, 35}});
   sets[24] = PointSet::kNone;
-  const auto segments = moving_objects::segmentSet(kGeometry, scan, sets, PointSet::kM, SegmentOptions{});
+  const auto segments = sylva::laser::segmentSet(kGeometry, scan, sets, PointSet::kM, SegmentOptions{});
   REQUIRE(segments.size() == 2);
   CHECK(segments[0].beams == std::vector<int>{20, 21, 22, 23, 25, 26, 27, 28, 29});
   CHECK(segments[1].first() == 30);
@@ -52,12 +52,12 @@ TEST_CASE("Segments: consecutive members close in space, dropouts bridged, range
   // A valid reading of another set between two members cuts the segment.
   sets[24] = PointSet::kA;
   ranges[24] = 2.0;
-  const auto cut = moving_objects::segmentSet(kGeometry, scanOf(ranges), sets, PointSet::kM, SegmentOptions{});
+  const auto cut = sylva::laser::segmentSet(kGeometry, scanOf(ranges), sets, PointSet::kM, SegmentOptions{});
   CHECK(cut.size() == 3);
   // More dropouts than max_beam_gap cut it too.
   for (int i = 23; i <= 25; ++i) ranges[static_cast<std::size_t>(i)] = std::nan("");
   for (int i = 23; i <= 25; ++i) sets[static_cast<std::size_t>(i)] = PointSet::kNone;
-  CHECK(moving_objects::segmentSet(kGeometry, scanOf(ranges), sets, PointSet::kM, SegmentOptions{}).size() == 3);
+  CHECK(sylva::laser::segmentSet(kGeometry, scanOf(ranges), sets, PointSet::kM, SegmentOptions{}).size() == 3);
 }
 
 TEST_CASE("Join: ends within the threshold merge, the joined segment leaves B, repeated until B stops shrinking",
@@ -67,7 +67,7 @@ TEST_CASE("Join: ends within the threshold merge, the joined segment leaves B, r
   const auto scan = scanOf(ranges);
   std::vector<Segment> a{Segment{{40, 41, 42}}};
   std::vector<Segment> b{Segment{{43, 44, 45, 46}}, Segment{{47, 48, 49, 50, 51}}, Segment{{100, 101}}, Segment{{10, 11}}};
-  const int merged = moving_objects::join(kGeometry, scan, SegmentOptions{}, a, b);
+  const int merged = sylva::laser::join(kGeometry, scan, SegmentOptions{}, a, b);
   CHECK(merged == 2);  // 43-46 touches 40-42; then 47-51 touches the grown segment
   REQUIRE(a.size() == 1);
   CHECK(a[0].first() == 40);
@@ -78,13 +78,13 @@ TEST_CASE("Join: ends within the threshold merge, the joined segment leaves B, r
   // Beam 39 is the 5 m background next to the object at 2 m: not close.
   std::vector<Segment> object{Segment{{40, 41}}};
   std::vector<Segment> background{Segment{{35, 36, 37, 38, 39}}};
-  CHECK(moving_objects::join(kGeometry, scan, SegmentOptions{}, object, background) == 0);
+  CHECK(sylva::laser::join(kGeometry, scan, SegmentOptions{}, object, background) == 0);
   CHECK(background.size() == 1);
 }
 
 TEST_CASE("Object position: convex hull, its area centroid and the bounding box", "[moving_objects]") {
-  using moving_objects::convexHull;
-  using moving_objects::hullCentroid;
+  using sylva::laser::convexHull;
+  using sylva::laser::hullCentroid;
   // A square with interior and edge points: the hull is its four corners.
   std::vector<Vec<2>> square{Vec<2>(0, 0), Vec<2>(2, 0), Vec<2>(2, 2), Vec<2>(0, 2), Vec<2>(1, 1), Vec<2>(1, 0), Vec<2>(0.5, 1.5)};
   CHECK(convexHull(square).size() == 4);
@@ -96,7 +96,7 @@ TEST_CASE("Object position: convex hull, its area centroid and the bounding box"
   std::vector<Vec<2>> line{Vec<2>(1, 1), Vec<2>(2, 2), Vec<2>(4, 4), Vec<2>(3, 3)};
   CHECK((hullCentroid(line) - Vec<2>(2.5, 2.5)).norm() < 1e-12);
   CHECK((hullCentroid({Vec<2>(3, -1)}) - Vec<2>(3, -1)).norm() == 0.0);
-  const auto box = moving_objects::boundingBox(triangle);
+  const auto box = sylva::laser::boundingBox(triangle);
   CHECK((box.min - Vec<2>(0, 0)).norm() == 0.0);
   CHECK((box.max - Vec<2>(3, 3)).norm() == 0.0);
   CHECK((box.center() - Vec<2>(1.5, 1.5)).norm() == 0.0);
@@ -113,15 +113,15 @@ TEST_CASE("Object position: convex hull, its area centroid and the bounding box"
 }
 
 TEST_CASE("Tracker: legs grouped into people, nearest-neighbour tracks confirmed after three hits", "[moving_objects]") {
-  std::vector<moving_objects::DetectedObject> objects(3);
+  std::vector<sylva::laser::DetectedObject> objects(3);
   objects[0].hull_centroid = Vec<2>(1.0, 0.0);
   objects[1].hull_centroid = Vec<2>(1.0, 0.3);
   objects[2].hull_centroid = Vec<2>(4.0, 0.0);
-  const auto people = moving_objects::groupPeople(objects, 0.6);
+  const auto people = sylva::laser::groupPeople(objects, 0.6);
   REQUIRE(people.size() == 2);
   CHECK(people[0].legs == 2);
   CHECK((people[0].position - Vec<2>(1.0, 0.15)).norm() < 1e-12);
-  moving_objects::NearestNeighborTracker tracker;
+  sylva::laser::NearestNeighborTracker tracker;
   for (int k = 0; k < 5; ++k)
     tracker.update(0.2 * k, {Vec<2>(1.0 + 0.2 * k, 0.0), Vec<2>(5.0, 3.0 - 0.25 * k)});
   CHECK(tracker.tracks().size() == 2);
