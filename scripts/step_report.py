@@ -397,6 +397,18 @@ def main():
             md.append(f"| {bt['compiler']} | **{bt['wall_seconds']:.0f} s** | {bt['jobs']} / {bt['cores']} | "
                       f"{sum(o['seconds'] for o in bt['objects']):.0f} s | {len(bt['objects'])} | "
                       f"`{slow['object']}`, {slow['seconds']:.0f} s |")
+        gxx = [bt for bt in builds if bt["compiler"].startswith(("g++", "c++"))]
+        if gxx:
+            # Issue 18's reference: the g++ build docs/benchmarks.md measured when the issue was
+            # filed, with this script on this machine. The target asks for the same sitting; this
+            # page compares with the recorded figure, from another sitting.
+            reference_s, target = 928.0, 0.4
+            wall = gxx[0]["wall_seconds"]
+            verdict = "met" if wall <= target * reference_s else "**not met**"
+            md.append(f"\nIssue 18 asks the g++ build to take at most {target:.0%} of the {reference_s:.0f} s "
+                      f"recorded when it was filed, {target * reference_s:.0f} s: this run's g++ build took "
+                      f"{wall / reference_s:.2f}x that figure, {verdict} (the reference is from another sitting, "
+                      "and the tests have grown since).")
         md.append("\nThe ten slowest objects of the first build:\n")
         md.append("| object | seconds |\n|---|---|")
         for o in builds[0]["objects"][:10]:

@@ -3,6 +3,7 @@
 
 #include <cmath>
 
+#include <Eigen/Core>  // unsupported/Eigen/AutoDiff needs it first
 #include <unsupported/Eigen/AutoDiff>
 
 #include <sylva/core/scalar.hpp>
