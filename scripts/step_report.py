@@ -404,10 +404,10 @@ def main():
             # page compares with the recorded figure, from another sitting.
             reference_s, target = 928.0, 0.4
             wall = gxx[0]["wall_seconds"]
-            verdict = "met" if wall <= target * reference_s else "**not met**"
+            outcome = "met" if wall <= target * reference_s else "**not met**"
             md.append(f"\nIssue 18 asks the g++ build to take at most {target:.0%} of the {reference_s:.0f} s "
                       f"recorded when it was filed, {target * reference_s:.0f} s: this run's g++ build took "
-                      f"{wall / reference_s:.2f}x that figure, {verdict} (the reference is from another sitting, "
+                      f"{wall / reference_s:.2f}x that figure, {outcome} (the reference is from another sitting, "
                       "and the tests have grown since).")
         md.append("\nThe ten slowest objects of the first build:\n")
         md.append("| object | seconds |\n|---|---|")
