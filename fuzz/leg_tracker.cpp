@@ -18,10 +18,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   writeFiles(dir, {"rec_scan_params.txt", "rec_scans.csv"}, split(asText(data, size), 2));
   return run([&] {
     const moving_objects::RealScans scans = moving_objects::loadLegTrackerRecording(dir.path().string(), "rec");
-    const sylva::laser::ScanGeometry& g = scans.geometry;
+    const sylva::LaserScanGeometry& g = scans.geometry;
     require(g.beams >= 2 && g.beams <= 100000, "the beam count is out of bounds");
-    require(std::isfinite(g.angle_min_rad) && g.angle_increment_rad > 0.0 && g.range_min_m >= 0.0 &&
-                g.range_max_m > g.range_min_m && std::isfinite(g.range_max_m),
+    require(std::isfinite(g.angle_min_rad) && g.angle_increment_rad > 0.0 && g.min_range_m >= 0.0 &&
+                g.max_range_m > g.min_range_m && std::isfinite(g.max_range_m),
             "the scan geometry is out of bounds");
     require(!scans.stamps_s.empty() && scans.stamps_s.size() == scans.ranges.size(), "scans and stamps differ in number");
     for (std::size_t i = 0; i < scans.stamps_s.size(); ++i) {

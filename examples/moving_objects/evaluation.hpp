@@ -27,6 +27,7 @@
 namespace moving_objects {
 
 using namespace sylva::laser;  // the detector and its scans (include/sylva/laser)
+using sylva::LaserScanGeometry;
 
 using sylva::Id;
 
@@ -62,7 +63,7 @@ inline bool movedDetectably(const sylva::sim::DynamicScene2D& world,
                             double t_previous,
                             double t_current,
                             const Vec<2>& sensor_position,
-                            const ScanGeometry& g,
+                            const LaserScanGeometry& g,
                             const MatchingOptions& o) {
   const auto before = world.objectPosition(id, t_previous);
   const auto after = world.objectPosition(id, t_current);
@@ -77,7 +78,7 @@ inline PointScores scorePoints(const Detection& d,
                                double t_previous,
                                double t_current,
                                const Vec<2>& sensor_position,
-                               const ScanGeometry& g,
+                               const LaserScanGeometry& g,
                                const MatchingOptions& o) {
   PointScores s;
   std::map<Id, bool> detectable;

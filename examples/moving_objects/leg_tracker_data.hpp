@@ -31,15 +31,16 @@
 namespace moving_objects {
 
 using namespace sylva::laser;  // the detector and its scans (include/sylva/laser)
+using sylva::LaserScanGeometry;
 
 struct RealScans {
-  ScanGeometry geometry;
+  LaserScanGeometry geometry;
   double scan_time_s = 0.0;          ///< nominal time between scans (params file), 0 if absent
   std::vector<double> stamps_s;
   std::vector<std::vector<double>> ranges;
 };
 
-inline ScanGeometry loadScanParams(const std::string& path, double* scan_time_s = nullptr) {
+inline LaserScanGeometry loadScanParams(const std::string& path, double* scan_time_s = nullptr) {
   std::ifstream in(path);
   if (!in) sylva::datasets::failMalformed(path, 0, "cannot open the scan parameter file");
   std::map<std::string, double> values;
@@ -58,17 +59,17 @@ inline ScanGeometry loadScanParams(const std::string& path, double* scan_time_s 
   }
   for (const char* key : {"angle_min", "angle_increment", "n_beams", "range_min", "range_max"})
     if (!values.count(key)) sylva::datasets::failMalformed(path, 0, std::string("missing key '") + key + "'");
-  ScanGeometry g;
+  LaserScanGeometry g;
   g.angle_min_rad = values["angle_min"];
   g.angle_increment_rad = values["angle_increment"];
   const double beams = values["n_beams"];
   if (!(beams >= 2.0 && beams <= 100000.0) || beams != std::floor(beams))
     sylva::datasets::failMalformed(path, 0, "n_beams must be a whole number from 2 to 100000");
   g.beams = static_cast<int>(beams);
-  g.range_min_m = values["range_min"];
-  g.range_max_m = values["range_max"];
+  g.min_range_m = values["range_min"];
+  g.max_range_m = values["range_max"];
   try {
-    g.validate();
+    validateScanGeometry(g);
   } catch (const sylva::Error& e) {
     sylva::datasets::failMalformed(path, 0, e.what());
   }

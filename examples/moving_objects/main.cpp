@@ -65,7 +65,7 @@ namespace {
 using sylva::laser::Detection;
 using sylva::laser::DetectorOptions;
 using sylva::laser::MovingObjectDetector;
-using sylva::laser::ScanGeometry;
+using sylva::LaserScanGeometry;
 using nlohmann::json;
 using sylva::Vec;
 
@@ -165,7 +165,7 @@ struct SceneReport {
   int confirmed_tracks = 0;
 };
 
-SceneReport runDefaultScene(const Options& o, const ScanGeometry& g, const sylva::sim::LaserScanner2D& scanner,
+SceneReport runDefaultScene(const Options& o, const LaserScanGeometry& g, const sylva::sim::LaserScanner2D& scanner,
                             const MovingObjectDetector& detector, const std::string& svg_path) {
   using namespace moving_objects;
   const DefaultScene scene = makeDefaultScene(o.seed, o.scans);
@@ -281,7 +281,7 @@ struct CaseReport {
   bool full = false;
 };
 
-std::vector<CaseReport> runCases(const Options& o, const ScanGeometry& g, const sylva::sim::LaserScanner2D& scanner,
+std::vector<CaseReport> runCases(const Options& o, const LaserScanGeometry& g, const sylva::sim::LaserScanner2D& scanner,
                                  const MovingObjectDetector& detector, const std::string& svg_path) {
   using namespace moving_objects;
   std::vector<CaseReport> out;
@@ -354,7 +354,7 @@ StaticReport runStaticCheck(const Options& o, const MovingObjectDetector& detect
   so.scene.people = 0;
   so.scene.laps = o.slam_laps;
   const SlamData data = simulateSlam(so, sylva::sim::deriveSeed(o.seed, 50));
-  const ScanGeometry& g = detector.geometry();
+  const LaserScanGeometry& g = detector.geometry();
   StaticReport r;
   AlignedScan previous = alignScan(g, data.scans[0].ranges_m, data.scene.trajectory.startPose());
   for (std::size_t k = 0; k < data.truth.size(); ++k) {
@@ -514,7 +514,7 @@ struct RealReport {
 /// Per beam: the static background range (75th percentile of the valid readings) when the
 /// beam reads valid in at least half of the scans, else +infinity (open space).
 std::vector<double> backgroundModel(const moving_objects::RealScans& data) {
-  const ScanGeometry& g = data.geometry;
+  const LaserScanGeometry& g = data.geometry;
   std::vector<double> background(static_cast<std::size_t>(g.beams), std::numeric_limits<double>::infinity());
   for (int b = 0; b < g.beams; ++b) {
     std::vector<double> valid;
@@ -548,7 +548,7 @@ int runReal(const Options& o, const DetectorOptions& detector_options, const std
     data.ranges.resize(static_cast<std::size_t>(o.real_max_scans));
     data.stamps_s.resize(static_cast<std::size_t>(o.real_max_scans));
   }
-  const ScanGeometry& g = data.geometry;
+  const LaserScanGeometry& g = data.geometry;
   const MovingObjectDetector detector(g, detector_options);
   const std::vector<double> background = backgroundModel(data);
   r.scans = static_cast<int>(data.ranges.size());
@@ -556,7 +556,7 @@ int runReal(const Options& o, const DetectorOptions& detector_options, const std
   if (data.ranges.size() <= step) sylva::fail(sylva::ErrorCode::kInvalidArgument, "--real-step is not smaller than the number of scans");
   NearestNeighborTracker tracker;
   svg::BeamTimeFigure fig;
-  fig.range_max = g.range_max_m;
+  fig.range_max = g.max_range_m;
   fig.beam_step = 2;
   const Vec<3> still = Vec<3>::Zero();  // the scanner stands still (data README)
   long long active_sum = 0;
@@ -684,7 +684,7 @@ int runReal(const Options& o) {
 
 int runSimulation(const Options& o) {
   const sylva::sim::LaserScanner2D scanner(scannerOptions(o));
-  const ScanGeometry g = moving_objects::geometryOf(scanner);
+  const LaserScanGeometry g = scanner.geometry();
   const MovingObjectDetector detector(g, detectorOptions(o));
   const double dt = 0.2;
 

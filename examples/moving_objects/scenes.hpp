@@ -29,6 +29,7 @@
 namespace moving_objects {
 
 using namespace sylva::laser;  // the detector and its scans (include/sylva/laser)
+using sylva::LaserScanGeometry;
 
 using sylva::Id;
 using sylva::Vec;

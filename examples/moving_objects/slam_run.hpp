@@ -52,6 +52,7 @@
 namespace moving_objects {
 
 using namespace sylva::laser;  // the detector and its scans (include/sylva/laser)
+using sylva::LaserScanGeometry;
 
 using SlamFilter = sylva::Ekf<sylva::Unicycle2D, sylva::Point2>;
 
@@ -79,18 +80,13 @@ struct SlamData {
   SlamScene scene;
   std::vector<sylva::sim::TrajectoryStep2D> truth;  ///< step k ends at truth[k].true_pose
   std::vector<sylva::sim::LaserScan2D> scans;       ///< scans[0] at the start, scans[k + 1] after step k
-  ScanGeometry geometry;
+  LaserScanGeometry geometry;
 };
-
-inline ScanGeometry geometryOf(const sylva::sim::LaserScanner2D& scanner) {
-  return ScanGeometry{scanner.angleMin(), scanner.angleIncrement(), scanner.beamCount(),
-                      scanner.options().min_range_m, scanner.options().max_range_m};
-}
 
 inline SlamData simulateSlam(const SlamRunOptions& o, std::uint64_t seed) {
   SlamData data{makeSlamScene(o.scene, seed), {}, {}, {}};
   const sylva::sim::LaserScanner2D scanner(o.scanner);
-  data.geometry = geometryOf(scanner);
+  data.geometry = scanner.geometry();
   sylva::sim::Rng rng(sylva::sim::deriveSeed(seed, 300));
   data.truth = data.scene.trajectory.simulate(data.scene.steps, rng);
   sylva::sim::LaserScene2D snapshot;
@@ -145,7 +141,7 @@ inline Id majorityObject(const sylva::sim::LaserScan2D& scan, const std::vector<
 
 inline SlamResult runSlam(const SlamData& data, const SlamRunOptions& o, bool remove_moving) {
   using sylva::Gaussian;
-  const ScanGeometry& g = data.geometry;
+  const LaserScanGeometry& g = data.geometry;
   const MovingObjectDetector detector(g, o.detector);
   const auto R = Gaussian<2>::sigmas(Vec<2>(o.sigma_feature_range_m, o.sigma_feature_bearing_rad));
   const auto& topt = data.scene.trajectory.options();
@@ -160,7 +156,7 @@ inline SlamResult runSlam(const SlamData& data, const SlamRunOptions& o, bool re
   front_end_options.gate_probability = o.gate_probability;
   front_end_options.new_landmark_probability = o.new_landmark_probability;
   const sylva::slam::RangeBearingReach reach{
-      g.range_max_m + 1.0, 0.5 * (g.beams - 1) * g.angle_increment_rad + 10.0 * sylva::kRadPerDeg, 1e-6};
+      g.max_range_m + 1.0, 0.5 * (g.beams - 1) * g.angle_increment_rad + 10.0 * sylva::kRadPerDeg, 1e-6};
   sylva::slam::FrontEnd<SlamFilter, sylva::RangeBearing, sylva::InverseRangeBearing> front_end(
       sylva::RangeBearing{}, sylva::InverseRangeBearing{}, front_end_options,
       sylva::slam::candidatesInReach<sylva::Point2>(sylva::RangeBearing{}, reach));

@@ -21,7 +21,7 @@ using sylva::laser::Detection;
 using sylva::laser::DetectorOptions;
 using sylva::laser::MovingObjectDetector;
 using sylva::laser::PointSet;
-using sylva::laser::ScanGeometry;
+using sylva::LaserScanGeometry;
 using moving_objects::ScriptedCase;
 using sylva::ErrorCode;
 using sylva::Id;
@@ -45,7 +45,7 @@ struct CaseRun {
 
 CaseRun runCase(const ScriptedCase& c, double sigma, std::uint64_t seed, const DetectorOptions& options = {}) {
   const auto scanner = scannerWithNoise(sigma);
-  const ScanGeometry g = moving_objects::geometryOf(scanner);
+  const LaserScanGeometry g = scanner.geometry();
   const MovingObjectDetector detector(g, options);
   sylva::sim::Rng rng(seed);
   const auto before = scanner.scan(c.previous_pose, c.world.snapshot(0.0), rng);
@@ -131,7 +131,7 @@ TEST_CASE("Several moving objects at once, with a walking person among them", "[
   walk.speed_mps = 1.2;
   world.addPerson(sylva::sim::WalkingPerson2D(walk, 200, 201));
   const auto scanner = scannerWithNoise(0.01);
-  const ScanGeometry g = moving_objects::geometryOf(scanner);
+  const LaserScanGeometry g = scanner.geometry();
   const MovingObjectDetector detector(g);
   int with_two_or_more = 0;
   moving_objects::PointScores pooled;
@@ -196,14 +196,14 @@ TEST_CASE("Detector: eq. 4.4 threshold and eq. 4.5 minimum detectable speed", "[
   const double res = 0.5 * sylva::kPi / 180.0;
   CHECK(sylva::laser::rangeThreshold(3.0, 0.0, res, 2.0) == Approx(3.0 * std::tan(sylva::kPi / 360.0) * 2.0));
   CHECK(sylva::laser::rangeThreshold(3.0, 0.04, res, 1.0) == Approx(0.04));  // the floor
-  const ScanGeometry g{-sylva::kPi / 2, res, 361, 0.05, 8.0};
+  const LaserScanGeometry g{-sylva::kPi / 2, res, 361, 0.05, 8.0};
   sylva::laser::MatchingOptions m;
   m.match_floor_m = 0.0;
   CHECK(sylva::laser::minDetectableSpeed(g, m, 4.0, 0.2) == Approx(3.0 * std::tan(res) * 4.0 / 0.2));
 }
 
 TEST_CASE("Algorithm 2 by hand: in front of the old surface is M_C, behind it is O_C", "[moving_objects]") {
-  const ScanGeometry g{-sylva::kPi / 2, sylva::kPi / 180.0, 181, 0.05, 10.0};
+  const LaserScanGeometry g{-sylva::kPi / 2, sylva::kPi / 180.0, 181, 0.05, 10.0};
   std::vector<double> before(181, 5.0), after(181, 5.0);
   for (int i = 60; i < 70; ++i) after[static_cast<std::size_t>(i)] = 3.0;   // something arrived
   for (int i = 120; i < 130; ++i) before[static_cast<std::size_t>(i)] = 2.0;  // something left
@@ -225,7 +225,7 @@ TEST_CASE("Algorithm 2 by hand: in front of the old surface is M_C, behind it is
 }
 
 TEST_CASE("Free-space extension: an object in front of open space is moving only with it", "[moving_objects]") {
-  const ScanGeometry g{-sylva::kPi / 2, sylva::kPi / 180.0, 181, 0.05, 10.0};
+  const LaserScanGeometry g{-sylva::kPi / 2, sylva::kPi / 180.0, 181, 0.05, 10.0};
   std::vector<double> before(181, kInf), after(181, kInf);
   for (int i = 0; i < 40; ++i) before[static_cast<std::size_t>(i)] = after[static_cast<std::size_t>(i)] = 4.0;
   for (int i = 90; i < 96; ++i) after[static_cast<std::size_t>(i)] = 3.0;
@@ -244,7 +244,7 @@ TEST_CASE("Free-space extension: an object in front of open space is moving only
 }
 
 TEST_CASE("Detector: NaN, infinite and out-of-range readings are no return, never an error", "[moving_objects]") {
-  const ScanGeometry g{-sylva::kPi / 2, sylva::kPi / 180.0, 181, 0.1, 10.0};
+  const LaserScanGeometry g{-sylva::kPi / 2, sylva::kPi / 180.0, 181, 0.1, 10.0};
   const MovingObjectDetector detector(g);
   std::vector<double> before(181, 5.0), after(181, 5.0);
   after[3] = std::nan("");
@@ -266,7 +266,7 @@ TEST_CASE("Detector: NaN, infinite and out-of-range readings are no return, neve
 }
 
 TEST_CASE("Detector: bad input and nonsense parameters are refused with a clear error", "[moving_objects]") {
-  const ScanGeometry g{-sylva::kPi / 2, sylva::kPi / 180.0, 181, 0.1, 10.0};
+  const LaserScanGeometry g{-sylva::kPi / 2, sylva::kPi / 180.0, 181, 0.1, 10.0};
   const MovingObjectDetector detector(g);
   const std::vector<double> scan(181, 5.0), shorter(180, 5.0);
   CHECK(throwsCode([&] { detector.detect(scan, Vec<3>::Zero(), shorter, Vec<3>::Zero(), 0.2); }, ErrorCode::kInvalidArgument));
@@ -294,9 +294,9 @@ TEST_CASE("Detector: bad input and nonsense parameters are refused with a clear 
   CHECK(throwsCode(make([](DetectorOptions& o) { o.segments.max_beam_gap = -1; }), ErrorCode::kInvalidArgument));
   CHECK(throwsCode(make([](DetectorOptions& o) { o.min_segment_points = 0; }), ErrorCode::kInvalidArgument));
   CHECK(throwsCode(make([](DetectorOptions& o) { o.replace_max_o_segments = -2; }), ErrorCode::kInvalidArgument));
-  CHECK(throwsCode([] { MovingObjectDetector d(ScanGeometry{0.0, 0.01, 1, 0.1, 10.0}); }, ErrorCode::kInvalidArgument));
-  CHECK(throwsCode([] { MovingObjectDetector d(ScanGeometry{0.0, -0.01, 100, 0.1, 10.0}); }, ErrorCode::kInvalidArgument));
-  CHECK(throwsCode([] { MovingObjectDetector d(ScanGeometry{0.0, 0.01, 100, 5.0, 1.0}); }, ErrorCode::kInvalidArgument));
+  CHECK(throwsCode([] { MovingObjectDetector d(LaserScanGeometry{0.0, 0.01, 1, 0.1, 10.0}); }, ErrorCode::kInvalidArgument));
+  CHECK(throwsCode([] { MovingObjectDetector d(LaserScanGeometry{0.0, -0.01, 100, 0.1, 10.0}); }, ErrorCode::kInvalidArgument));
+  CHECK(throwsCode([] { MovingObjectDetector d(LaserScanGeometry{0.0, 0.01, 100, 5.0, 1.0}); }, ErrorCode::kInvalidArgument));
 }
 
 TEST_CASE("Scans from a moving robot are aligned by its pose before detection", "[moving_objects]") {
@@ -308,7 +308,7 @@ TEST_CASE("Scans from a moving robot are aligned by its pose before detection", 
   const CaseRun aligned = runCase(c, 0.01, 3);
   CHECK(recoveredInFull(aligned));
   const auto scanner = scannerWithNoise(0.01);
-  const MovingObjectDetector detector(moving_objects::geometryOf(scanner));
+  const MovingObjectDetector detector(scanner.geometry());
   sylva::sim::Rng rng(3);
   const auto before = scanner.scan(c.previous_pose, c.world.snapshot(0.0), rng);
   const auto after = scanner.scan(c.current_pose, c.world.snapshot(c.dt_s), rng);

@@ -23,7 +23,7 @@ TEST_CASE("Point features: a pole's centre within centimetres, walls and wide th
   scene.addCircle(Vec<2>(4.0, -2.0), 0.5, 2);                     // a wide pillar
   scene.addSegment(Vec<2>(2.0, -3.5), Vec<2>(2.8, -3.5), 3);      // a board, 0.8 m
   const sylva::sim::LaserScanner2D scanner;
-  const auto g = moving_objects::geometryOf(scanner);
+  const auto g = scanner.geometry();
   double worst = 0.0;
   for (std::uint64_t seed = 1; seed <= 20; ++seed) {
     sylva::sim::Rng rng(seed);

@@ -13,12 +13,12 @@
 namespace unity_laser_segments_and_position {
 
 using sylva::laser::PointSet;
-using sylva::laser::ScanGeometry;
+using sylva::LaserScanGeometry;
 using sylva::laser::Segment;
 using sylva::laser::SegmentOptions;
 using sylva::Vec;
 
-const ScanGeometry kGeometry{-sylva::kPi / 2, sylva::kPi / 180.0, 181, 0.05, 10.0};
+const LaserScanGeometry kGeometry{-sylva::kPi / 2, sylva::kPi / 180.0, 181, 0.05, 10.0};
 
 /// A scan at the origin; every beam reads `ranges[i]`.
 sylva::laser::AlignedScan scanOf(const std::vector<double>& ranges) {

@@ -56,7 +56,7 @@ TEST_CASE("leg_tracker loader: parameters and scans, inf and nan included", "[mo
   CHECK(data.geometry.beams == 4);
   CHECK(data.geometry.angle_min_rad == -1.5);
   CHECK(data.geometry.angle_increment_rad == 1.0);
-  CHECK(data.geometry.range_max_m == 5.6);
+  CHECK(data.geometry.max_range_m == 5.6);
   CHECK(data.scan_time_s == 0.1);
   REQUIRE(data.ranges.size() == 3);
   CHECK(data.stamps_s[2] == 100.2);

@@ -102,19 +102,19 @@ struct Detection {
 
 /// eq. 4.5: the smallest relative speed that moves an object at range r by more than the
 /// closest-point threshold dd_c(r) between scans dt seconds apart.
-inline double minDetectableSpeed(const ScanGeometry& g, const MatchingOptions& o, double range_m, double dt_s) {
+inline double minDetectableSpeed(const LaserScanGeometry& g, const MatchingOptions& o, double range_m, double dt_s) {
   return rangeThreshold(o.match_k, o.match_floor_m, g.angle_increment_rad, range_m) / dt_s;
 }
 
 class MovingObjectDetector {
  public:
-  MovingObjectDetector(const ScanGeometry& geometry, const DetectorOptions& options = {})
+  MovingObjectDetector(const LaserScanGeometry& geometry, const DetectorOptions& options = {})
       : geometry_(geometry), options_(options) {
-    geometry_.validate();
+    validateScanGeometry(geometry_);
     options_.validate();
   }
 
-  const ScanGeometry& geometry() const { return geometry_; }
+  const LaserScanGeometry& geometry() const { return geometry_; }
   const DetectorOptions& options() const { return options_; }
 
   /// Moving objects in `current` (ranges of the scan at sensor pose `current_pose`) against
@@ -139,7 +139,7 @@ class MovingObjectDetector {
   }
 
   Detection detect(const AlignedScan& previous, const AlignedScan& current, double dt_s) const {
-    const ScanGeometry& g = geometry_;
+    const LaserScanGeometry& g = geometry_;
     const DetectorOptions& o = options_;
     Detection d;
     d.no_return = current.no_return;
@@ -231,7 +231,7 @@ class MovingObjectDetector {
   }
 
  private:
-  ScanGeometry geometry_;
+  LaserScanGeometry geometry_;
   DetectorOptions options_;
 };
 

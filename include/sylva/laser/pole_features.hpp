@@ -45,7 +45,7 @@ struct PointFeature {
   std::vector<int> beams;    ///< readings it was made of
 };
 
-inline std::vector<PointFeature> extractPointFeatures(const ScanGeometry& g,
+inline std::vector<PointFeature> extractPointFeatures(const LaserScanGeometry& g,
                                                       const AlignedScan& scan,
                                                       const FeatureOptions& o) {
   std::vector<PointSet> all(static_cast<std::size_t>(scan.size()), PointSet::kNone);
@@ -74,7 +74,7 @@ inline std::vector<PointFeature> extractPointFeatures(const ScanGeometry& g,
     const double front = middle[middle.size() / 2];
     const double spacing = std::tan(g.angle_increment_rad) * front;
     const double radius = std::clamp(0.5 * (chord + spacing), o.min_radius_m, 0.5 * o.max_width_m);
-    const double bearing = sylva::wrapAngle(0.5 * (g.angle(s.first()) + g.angle(s.last())));
+    const double bearing = sylva::wrapAngle(0.5 * (g.beamAngle(s.first()) + g.beamAngle(s.last())));
     PointFeature f;
     f.z = Vec<2>(front + radius, bearing);
     const double a = scan.sensor_pose[2] + bearing;

@@ -22,47 +22,37 @@
 
 #include "sylva/core/error.hpp"
 #include "sylva/core/types.hpp"
+#include "sylva/measurements/laser_scan_geometry.hpp"
 
 namespace sylva::laser {
 
 
-/// The beams of a scanner: beam i looks at angle_min + i * increment from the sensor's x
-/// axis (counter-clockwise positive).
-struct ScanGeometry {
-  double angle_min_rad = 0.0;
-  double angle_increment_rad = 0.0;
-  int beams = 0;
-  double range_min_m = 0.0;
-  double range_max_m = 0.0;
-
-  double angle(int i) const { return angle_min_rad + i * angle_increment_rad; }
-
-  /// Throws kInvalidArgument unless the geometry makes sense.
-  void validate() const {
-    std::ostringstream os;
-    if (beams < 2 || beams > 100000) {
-      os << "scan geometry: need 2 to 100000 beams, got " << beams;
-    } else if (!std::isfinite(angle_min_rad) || !std::isfinite(angle_increment_rad) ||
-               !(angle_increment_rad > 0.0) || !((beams - 1) * angle_increment_rad <= 6.2832)) {
-      os << "scan geometry: need a finite angle_min and 0 < increment with the beams spanning "
-            "at most 2 pi, got angle_min = "
-         << angle_min_rad << " rad, increment = " << angle_increment_rad << " rad";
-    } else if (!std::isfinite(range_min_m) || !std::isfinite(range_max_m) ||
-               !(range_min_m >= 0.0) || !(range_max_m > range_min_m)) {
-      os << "scan geometry: need finite 0 <= range_min < range_max, got " << range_min_m
-         << " m and " << range_max_m << " m";
-    } else {
-      return;
-    }
-    sylva::fail(sylva::ErrorCode::kInvalidArgument, os.str());
+/// Throws kInvalidArgument unless the beam geometry `g` makes sense for the detector: 2 to
+/// 100000 beams spanning at most 2 pi, and finite 0 <= min_range < max_range.
+inline void validateScanGeometry(const LaserScanGeometry& g) {
+  std::ostringstream os;
+  if (g.beams < 2 || g.beams > 100000) {
+    os << "scan geometry: need 2 to 100000 beams, got " << g.beams;
+  } else if (!std::isfinite(g.angle_min_rad) || !std::isfinite(g.angle_increment_rad) ||
+             !(g.angle_increment_rad > 0.0) || !((g.beams - 1) * g.angle_increment_rad <= 6.2832)) {
+    os << "scan geometry: need a finite angle_min and 0 < increment with the beams spanning "
+          "at most 2 pi, got angle_min = "
+       << g.angle_min_rad << " rad, increment = " << g.angle_increment_rad << " rad";
+  } else if (!std::isfinite(g.min_range_m) || !std::isfinite(g.max_range_m) || !(g.min_range_m >= 0.0) ||
+             !(g.max_range_m > g.min_range_m)) {
+    os << "scan geometry: need finite 0 <= min_range < max_range, got " << g.min_range_m << " m and "
+       << g.max_range_m << " m";
+  } else {
+    return;
   }
-};
+  sylva::fail(sylva::ErrorCode::kInvalidArgument, os.str());
+}
 
 enum class Reading : std::uint8_t { kValid, kNoReturn, kInvalid };
 
-inline Reading classifyReading(double r, const ScanGeometry& g) {
-  if (std::isnan(r) || r < g.range_min_m) return Reading::kInvalid;
-  if (r > g.range_max_m) return Reading::kNoReturn;  // +inf included
+inline Reading classifyReading(double r, const LaserScanGeometry& g) {
+  if (std::isnan(r) || r < g.min_range_m) return Reading::kInvalid;
+  if (r > g.max_range_m) return Reading::kNoReturn;  // +inf included
   return Reading::kValid;
 }
 
@@ -85,7 +75,7 @@ struct AlignedScan {
 /// Places `ranges` (one per beam of `g`) in the world from `sensor_pose`. Throws
 /// kInvalidArgument when the number of ranges is not the number of beams, kNonFinite when
 /// the pose is not finite. Readings that are not valid are counted, never an error.
-inline AlignedScan alignScan(const ScanGeometry& g, const std::vector<double>& ranges, const Vec<3>& sensor_pose) {
+inline AlignedScan alignScan(const LaserScanGeometry& g, const std::vector<double>& ranges, const Vec<3>& sensor_pose) {
   if (static_cast<int>(ranges.size()) != g.beams) {
     std::ostringstream os;
     os << "a scan has " << ranges.size() << " ranges but the scanner has " << g.beams << " beams";
@@ -104,7 +94,7 @@ inline AlignedScan alignScan(const ScanGeometry& g, const std::vector<double>& r
     if (out.reading[k] == Reading::kNoReturn) ++out.no_return;
     if (out.reading[k] == Reading::kInvalid) ++out.invalid;
     if (out.reading[k] != Reading::kValid) continue;
-    const double a = sensor_pose[2] + g.angle(i);
+    const double a = sensor_pose[2] + g.beamAngle(i);
     out.points[k] = sensor_pose.head<2>() + ranges[k] * Vec<2>(std::cos(a), std::sin(a));
   }
   return out;

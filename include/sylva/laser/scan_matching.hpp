@@ -100,7 +100,7 @@ struct MatchingOptions {
 };
 
 /// The beam of `scan` nearest to the direction of world point p (may be outside 0..beams-1).
-inline int nearestBeam(const ScanGeometry& g, const AlignedScan& scan, const Vec<2>& p) {
+inline int nearestBeam(const LaserScanGeometry& g, const AlignedScan& scan, const Vec<2>& p) {
   const Vec<2> d = p - scan.origin();
   const double bearing = sylva::wrapAngle(std::atan2(d.y(), d.x()) - scan.sensor_pose[2]);
   double rel = bearing - g.angle_min_rad;
@@ -114,7 +114,7 @@ inline int nearestBeam(const ScanGeometry& g, const AlignedScan& scan, const Vec
 /// Stage 1 (eq. 4.3): matched[i] = 1 when valid reading i of `scan` has a valid point of
 /// `other` within dd_c(r_i). The search starts at the beam of `other` pointing at the reading
 /// and widens, stopping at the first point within the threshold.
-inline std::vector<char> closestPointMatches(const ScanGeometry& g,
+inline std::vector<char> closestPointMatches(const LaserScanGeometry& g,
                                              const AlignedScan& scan,
                                              const AlignedScan& other,
                                              const MatchingOptions& o) {
@@ -153,12 +153,12 @@ struct SetClassification {
 };
 
 /// True when the previous scan saw free space beyond world point p (the extension above).
-inline bool previousSawFreeSpaceAt(const ScanGeometry& g,
+inline bool previousSawFreeSpaceAt(const LaserScanGeometry& g,
                                    const AlignedScan& previous,
                                    const Vec<2>& p,
                                    const MatchingOptions& o) {
   const double rho = (p - previous.origin()).norm();
-  if (!(rho <= o.free_space_max_range_fraction * g.range_max_m)) return false;
+  if (!(rho <= o.free_space_max_range_fraction * g.max_range_m)) return false;
   const int k = nearestBeam(g, previous, p);
   if (k < 1 || k > previous.size() - 2) return false;  // outside the previous field of view
   const double margin = rangeThreshold(o.match_k, o.match_floor_m, g.angle_increment_rad, rho);
@@ -171,7 +171,7 @@ inline bool previousSawFreeSpaceAt(const ScanGeometry& g,
 }
 
 /// Stages 1 and 2: closest points, then Algorithm 2 on what is left.
-inline SetClassification classifyScans(const ScanGeometry& g,
+inline SetClassification classifyScans(const LaserScanGeometry& g,
                                        const AlignedScan& previous,
                                        const AlignedScan& current,
                                        const MatchingOptions& o) {

@@ -54,18 +54,18 @@ struct SegmentOptions {
   }
 };
 
-inline double segmentThreshold(const ScanGeometry& g, const SegmentOptions& o, double range_m) {
+inline double segmentThreshold(const LaserScanGeometry& g, const SegmentOptions& o, double range_m) {
   return rangeThreshold(o.k, o.floor_m, g.angle_increment_rad, range_m);
 }
 
 /// True when readings i and j (valid) are close enough to belong to one object.
-inline bool closeReadings(const ScanGeometry& g, const AlignedScan& scan, const SegmentOptions& o, int i, int j) {
+inline bool closeReadings(const LaserScanGeometry& g, const AlignedScan& scan, const SegmentOptions& o, int i, int j) {
   const double threshold = segmentThreshold(g, o, std::min(scan.range(i), scan.range(j)));
   return (scan.point(i) - scan.point(j)).norm() <= threshold;
 }
 
 /// The continuous segments of the readings of `scan` whose set is `which`.
-inline std::vector<Segment> segmentSet(const ScanGeometry& g,
+inline std::vector<Segment> segmentSet(const LaserScanGeometry& g,
                                        const AlignedScan& scan,
                                        const std::vector<PointSet>& sets,
                                        PointSet which,
@@ -91,7 +91,7 @@ inline std::vector<Segment> segmentSet(const ScanGeometry& g,
 }
 
 /// True when an end of `a` is within the segmentation threshold of an end of `b`.
-inline bool endsClose(const ScanGeometry& g, const AlignedScan& scan, const SegmentOptions& o, const Segment& a, const Segment& b) {
+inline bool endsClose(const LaserScanGeometry& g, const AlignedScan& scan, const SegmentOptions& o, const Segment& a, const Segment& b) {
   for (const int ea : {a.first(), a.last()})
     for (const int eb : {b.first(), b.last()})
       if (closeReadings(g, scan, o, ea, eb)) return true;
@@ -100,7 +100,7 @@ inline bool endsClose(const ScanGeometry& g, const AlignedScan& scan, const Segm
 
 /// Join(A, B) of Sec. 4.3.4 (see the file comment). Returns the number of segments of B
 /// merged into A.
-inline int join(const ScanGeometry& g,
+inline int join(const LaserScanGeometry& g,
                 const AlignedScan& scan,
                 const SegmentOptions& o,
                 std::vector<Segment>& a,

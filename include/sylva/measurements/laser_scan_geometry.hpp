@@ -1,7 +1,8 @@
 #pragma once
 /// @file
 /// `LaserScanGeometry`: the beam angles and valid range interval of a planar laser scan,
-/// shared by the sensors that read a scan (`LaserCameraSensor`) and the scanner simulator
+/// shared by what reads a scan (`LaserCameraSensor`, the `sylva/laser` tools, which check it
+/// with `laser::validateScanGeometry`) and the scanner simulator
 /// (`sim::LaserScanner2D::geometry()`).
 
 #include "sylva/core/angles.hpp"
