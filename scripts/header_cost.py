@@ -23,6 +23,8 @@ once and compared with the median Eigen/Dense time of its compiler.
     python3 scripts/header_cost.py --print-only    # prints the tables, writes nothing
     python3 scripts/header_cost.py --render-only   # rewrites the page from docs/build-time.raw.json
                                                    # (the last run's times), measures nothing
+    python3 scripts/header_cost.py --check-coverage  # fails when a public header or umbrella
+                                                   # is missing from the last run (a test)
 
 The targets (issue 18): with g++ the umbrella at most 2x and the sample at most 3x Eigen/Dense;
 with clang++ at most 1.5x and 2.5x.
@@ -50,8 +52,9 @@ COMMAND = "python3 scripts/header_cost.py"
 
 # (compiler label, umbrella target, sample target)
 TARGETS = {"g++": (2.0, 3.0), "clang++": (1.5, 2.5)}
-UMBRELLAS = ["sylva/sylva.hpp", "sylva/monocular.hpp", "sylva/laser_camera.hpp", "sylva/association.hpp",
-             "sylva/consistency.hpp", "sylva/sim.hpp", "sylva/datasets.hpp", "sylva/eval.hpp"]
+UMBRELLAS = ["sylva/sylva.hpp", "sylva/monocular.hpp", "sylva/laser_camera.hpp", "sylva/laser.hpp",
+             "sylva/association.hpp", "sylva/consistency.hpp", "sylva/sim.hpp", "sylva/datasets.hpp",
+             "sylva/eval.hpp"]
 
 
 def cpu_seconds_of(argv):
@@ -308,6 +311,35 @@ def cpu_model():
     return platform.processor() or "unknown CPU"
 
 
+def check_coverage():
+    """0 when the last run measured every public header (each compiler) and every umbrella, else
+    a message naming what the page lacks: a header added since must be measured before it lands."""
+    try:
+        with open(RAW) as f:
+            result = json.load(f)["result"]
+    except (OSError, ValueError, KeyError) as e:
+        return f"header_cost: cannot read {os.path.relpath(RAW, ROOT)}: {e}"
+    missing = []
+    for name, measured in sorted(result.get("compilers", {}).items()):
+        for h in public_headers():
+            if h not in measured.get("headers", {}):
+                missing.append(f"{name}: header {h}")
+        for h in sorted(set(measured.get("headers", {})) - set(public_headers())):
+            missing.append(f"{name}: header {h} (measured, but no longer in include/)")
+        rounds = measured.get("rounds") or []
+        for u in UMBRELLAS:
+            if not rounds or not all(u in r.get("cases", {}) for r in rounds):
+                missing.append(f"{name}: umbrella {u}")
+    if not result.get("compilers"):
+        missing.append("no compiler measured")
+    if missing:
+        return ("header_cost: docs/build-time.md is stale; run `python3 scripts/header_cost.py`:\n  "
+                + "\n  ".join(missing))
+    print(f"header_cost: the last run measured all {len(public_headers())} public headers and "
+          f"{len(UMBRELLAS)} umbrellas")
+    return 0
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--compilers", nargs="+", default=["g++", "clang++"])
@@ -316,8 +348,12 @@ def main():
     parser.add_argument("--print-only", action="store_true", help="print the page, write nothing")
     parser.add_argument("--render-only", action="store_true",
                         help=f"render the page from {os.path.relpath(RAW, ROOT)}, measure nothing")
+    parser.add_argument("--check-coverage", action="store_true",
+                        help=f"check that {os.path.relpath(RAW, ROOT)} measured every public header and umbrella")
     parser.add_argument("--quiet", action="store_true")
     args = parser.parse_args()
+    if args.check_coverage:
+        sys.exit(check_coverage())
     if args.runs < 1:
         sys.exit("header_cost: --runs must be at least 1")
     if args.render_only:
