@@ -13,9 +13,13 @@
 ///   BM_StepBatchedUnusedTypes `Ekf<Odometry2D, Point2, Point3, TreeXYZR>` on the same steps:
 ///                             the extra landmark types are present but unused, so any
 ///                             difference to BM_StepBatched is the price of generality
-///   BM_StepBatchedWallOneThread, BM_StepBatchedWallTwoThreads
-///                             BM_StepBatched in wall-clock time, alone and with a
-///                             sylva::ThreadPool of 2 threads (Ekf::setParallel)
+///   BM_PairedUnusedTypes      BM_StepBatched and BM_StepBatchedUnusedTypes paired step by step:
+///                             each iteration runs the same step through both filters, in
+///                             alternating order; counter `ratio` (the mixed filter's time over
+///                             the plain one's, summed over the repetition)
+///   BM_PairedThreads          the same pairing of BM_StepBatched on the calling thread alone and
+///                             with a sylva::ThreadPool of 2 (Ekf::setParallel), in wall-clock
+///                             time; counter `speedup` (one thread's time over two's)
 ///   BM_RankUpdateWallOneThread, BM_RankUpdateWallTwoThreads (the argument is n)
 ///                             the tiled rank-24 update of the lower triangle alone, on one
 ///                             thread and on two whatever n: where two start to pay
@@ -26,6 +30,8 @@
 ///                             counter gflops
 ///   BM_PhasePredict, BM_PhaseLinearize, BM_PhaseRankUpdate
 ///                             prefixes of the batched step, for where its time goes (below)
+///   BM_PhaseGain              the factor of S and the gain W = P H^T L^-T alone, at the step's
+///                             n and rank (below)
 ///
 /// One iteration of a step family is one step of lap 2: iteration i runs step i mod K of
 /// lap 2 (K = min(lap length, 40)), starting again from a copy of the end-of-lap-1 filter
@@ -37,6 +43,7 @@
 
 #include <Eigen/Core>
 #include <algorithm>
+#include <chrono>
 #include <vector>
 
 #include "common/build_context.hpp"
@@ -44,6 +51,7 @@
 #include "sylva/core/thread_pool.hpp"
 #include "sylva/detail/lower_rank_update.hpp"
 #include "sylva/filter/linearization.hpp"
+#include "sylva/filter/update_form.hpp"
 #include "sylva/landmarks/point3.hpp"
 #include "sylva/landmarks/tree_xyzr.hpp"
 
@@ -107,12 +115,78 @@ void timeSteps(benchmark::State& state, sylva::Fusion fusion, sylva::Parallel* p
 void BM_StepBatched(benchmark::State& state) { timeSteps<PointFilter>(state, sylva::Fusion::kBatched); }
 void BM_StepSequential(benchmark::State& state) { timeSteps<PointFilter>(state, sylva::Fusion::kSequential); }
 void BM_StepBatchedUnusedTypes(benchmark::State& state) { timeSteps<MixedFilter>(state, sylva::Fusion::kBatched); }
-/// The batched step in wall-clock time, on the calling thread alone and with a ThreadPool of
-/// two (Ekf::setParallel): their ratio is what the second thread gains.
-void BM_StepBatchedWallOneThread(benchmark::State& state) { timeSteps<PointFilter>(state, sylva::Fusion::kBatched); }
-void BM_StepBatchedWallTwoThreads(benchmark::State& state) {
+
+/// Two filters run the same steps of lap 2, step by step: each iteration runs one step through
+/// `a` and then `b`, or `b` and then `a` (alternating, so neither always finds the caches as the
+/// other left them), each timed alone by a steady clock. Timing the two within milliseconds of
+/// each other cancels what a shared machine does over seconds (another job's burst, frequency
+/// changes), which separate benchmarks interleaved at random only spread over repetitions.
+/// Counter `name`: the sum of a's times over the sum of b's; `a_seconds` and `b_seconds`: each
+/// one's mean time per step. Both restart from their copies of the end of lap 1 every K steps,
+/// outside the timing.
+template <typename FilterA, typename FilterB>
+void timePaired(benchmark::State& state, sylva::Parallel* parallel_a, sylva::Parallel* parallel_b, const char* name) {
+  using Clock = std::chrono::steady_clock;
+  const int landmarks = static_cast<int>(state.range(0));
+  const World& w = worldOf(landmarks);
+  const FilterA& start_a = endOfLapOne<FilterA>(landmarks);
+  const FilterB& start_b = endOfLapOne<FilterB>(landmarks);
+  const auto noise = w.world.odometryNoise();
+  const double dt = w.world.config().dt_s;
+  const int first = w.world.lapBegin(1);
+  const int timed = std::min(kMaxTimedSteps, w.world.stepsPerLap());
+  FilterA a = start_a;
+  FilterB b = start_b;
+  a.setParallel(parallel_a);
+  b.setParallel(parallel_b);
+  sylva_bench::StepScratch scratch_a;
+  sylva_bench::StepScratch scratch_b;
+  double seconds_a = 0.0;
+  double seconds_b = 0.0;
+  int k = 0;
+  int cycle = 0;
+  const auto run = [&](auto& ekf, sylva_bench::StepScratch& scratch, const SylvaStep& step) {
+    const auto t0 = Clock::now();
+    sylva_bench::runStep(ekf, step, noise, dt, sylva::Fusion::kBatched, scratch);
+    benchmark::ClobberMemory();
+    return std::chrono::duration<double>(Clock::now() - t0).count();
+  };
+  for (auto _ : state) {
+    if (k == timed) {
+      state.PauseTiming();
+      a = start_a;
+      b = start_b;
+      a.setParallel(parallel_a);  // the copies took their starts' (none)
+      b.setParallel(parallel_b);
+      k = 0;
+      ++cycle;
+      state.ResumeTiming();
+    }
+    const SylvaStep& step = w.steps[static_cast<std::size_t>(first + k)];
+    // Which goes first alternates from one iteration to the next and, for the same step, from
+    // one pass over the K steps to the next (K may be even).
+    if ((k + cycle) % 2 == 0) {
+      seconds_a += run(a, scratch_a, step);
+      seconds_b += run(b, scratch_b, step);
+    } else {
+      seconds_b += run(b, scratch_b, step);
+      seconds_a += run(a, scratch_a, step);
+    }
+    ++k;
+  }
+  state.counters["N"] = landmarks;
+  state.counters["n"] = start_a.dim();
+  state.counters[name] = seconds_b > 0.0 ? seconds_a / seconds_b : 0.0;
+  const double steps = static_cast<double>(std::max<benchmark::IterationCount>(1, state.iterations()));
+  state.counters["a_seconds"] = seconds_a / steps;
+  state.counters["b_seconds"] = seconds_b / steps;
+}
+void BM_PairedUnusedTypes(benchmark::State& state) {
+  timePaired<MixedFilter, PointFilter>(state, nullptr, nullptr, "ratio");
+}
+void BM_PairedThreads(benchmark::State& state) {
   static sylva::ThreadPool pool(2);
-  timeSteps<PointFilter>(state, sylva::Fusion::kBatched, &pool);
+  timePaired<PointFilter, PointFilter>(state, nullptr, &pool, "speedup");
 }
 
 /// Where the time of a batched step goes, on the steps BM_StepBatched times (restarted from
@@ -182,6 +256,53 @@ void BM_PhaseRankUpdate(benchmark::State& state) {
   benchmark::DoNotOptimize(P.data());
 }
 
+/// The other dense kernel of the batched update, at the same n and ranks as
+/// BM_PhaseRankUpdate: the Cholesky factor L of a k x k innovation covariance S, then
+/// SymmetricUpdate::increment, the filter's own code for L^-1, W = P H^T L^-T (an n x k by
+/// k x k product) and the mean's increment. With BM_PhaseRankUpdate it is what any step of this
+/// update form computes whatever its bookkeeping costs: their sum against the machine limit
+/// says what the step can reach with these kernels (docs/step-limit.md).
+void BM_PhaseGain(benchmark::State& state) {
+  const int landmarks = static_cast<int>(state.range(0));
+  const World& w = worldOf(landmarks);
+  const PointFilter& start = endOfLapOne<PointFilter>(landmarks);
+  const int first = w.world.lapBegin(1);
+  const int timed = std::min(kMaxTimedSteps, w.world.stepsPerLap());
+  const int n = start.dim();
+  std::vector<int> ranks;
+  for (int k = 0; k < timed; ++k) {
+    int known = 0;
+    for (const auto& obs : w.steps[static_cast<std::size_t>(first + k)].observations) known += start.contains(obs.id) ? 1 : 0;
+    ranks.push_back(2 * known);
+  }
+  const int max_rank = std::max(1, *std::max_element(ranks.begin(), ranks.end()));
+  // A well-conditioned S (diagonally dominant) and P H^T of the step's shape; the values do
+  // not change the kernels' work.
+  const Eigen::MatrixXd S_full = Eigen::MatrixXd::Constant(max_rank, max_rank, 0.1) +
+                                 static_cast<double>(max_rank) * Eigen::MatrixXd::Identity(max_rank, max_rank);
+  Eigen::MatrixXd PHt_full = Eigen::MatrixXd::Constant(n, max_rank, 1e-3);  // read, not written
+  const Eigen::VectorXd nu_full = Eigen::VectorXd::Constant(max_rank, 0.01);
+  Eigen::MatrixXd S_buffer(max_rank, max_rank);
+  Eigen::VectorXd delta(n);
+  sylva::detail::BatchWorkspace<> workspace;
+  int k = 0;
+  for (auto _ : state) {
+    if (k == timed) k = 0;
+    const int rank = ranks[static_cast<std::size_t>(k)];
+    Eigen::Map<Eigen::MatrixXd> S(S_buffer.data(), rank, rank);
+    S = S_full.topLeftCorner(rank, rank);
+    Eigen::Map<Eigen::MatrixXd> PHt(PHt_full.data(), n, rank);
+    Eigen::LLT<Eigen::Ref<Eigen::MatrixXd>> llt(S);
+    const auto W = sylva::SymmetricUpdate::increment<Eigen::Dynamic>(PHt, llt, nu_full.head(rank), workspace, delta);
+    benchmark::DoNotOptimize(W.data());
+    benchmark::DoNotOptimize(delta.data());
+    ++k;
+    benchmark::ClobberMemory();
+  }
+  state.counters["N"] = landmarks;
+  state.counters["n"] = n;
+}
+
 /// P -= W W^T on the lower triangle (detail::subtractLowerRankUpdate) for a rank-24 W and an
 /// n x n P (the argument is n), on one thread and with a ThreadPool of two whatever n: where
 /// a second thread starts to pay (detail::kParallelMinRows).
@@ -248,13 +369,14 @@ void mapSizes(benchmark::internal::Benchmark* b) {
 BENCHMARK(BM_StepBatched)->Apply(mapSizes)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_StepSequential)->Apply(mapSizes)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_StepBatchedUnusedTypes)->Apply(mapSizes)->Unit(benchmark::kMicrosecond);
-BENCHMARK(BM_StepBatchedWallOneThread)->Apply(mapSizes)->UseRealTime()->Unit(benchmark::kMicrosecond);
-BENCHMARK(BM_StepBatchedWallTwoThreads)->Apply(mapSizes)->UseRealTime()->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_PairedUnusedTypes)->Apply(mapSizes)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_PairedThreads)->Apply(mapSizes)->UseRealTime()->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_RankUpdateWallOneThread)->DenseRange(64, 1024, 64)->Arg(2003)->Arg(4003)->UseRealTime()->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_RankUpdateWallTwoThreads)->DenseRange(64, 1024, 64)->Arg(2003)->Arg(4003)->UseRealTime()->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_PhasePredict)->Apply(mapSizes)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_PhaseLinearize)->Apply(mapSizes)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_PhaseRankUpdate)->Apply(mapSizes)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_PhaseGain)->Apply(mapSizes)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_BoundFullReadWrite)->Apply(mapSizes)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_BoundLowerReadWrite)->Apply(mapSizes)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_GemmPeak)->Unit(benchmark::kMicrosecond);

@@ -411,37 +411,39 @@ def forest_association_figures(out):
 
 
 def threads_figures(out):
-    """docs/benchmarks.md: the batched step on one thread and with a ThreadPool of two
-    (bench/slam_step.cpp, wall-clock time). Repetitions are interleaved at random, so the
-    repetition i of both families ran close in time: the speed-up is taken per repetition
-    (paired) and given as its median and range."""
+    """docs/filter.md: the batched step on one thread and with a ThreadPool of two
+    (bench/slam_step.cpp's BM_PairedThreads, wall-clock time). Every iteration runs the same
+    step both ways within milliseconds, so each repetition's speed-up (its counter `speedup`,
+    summed times of one thread over two) is paired step by step; given as the median and range
+    over the repetitions."""
     import statistics
     if "bench" not in out:
         return {}  # skipped: no benchmarks in this build
-    unit = {"ns": 1e-9, "us": 1e-6, "ms": 1e-3, "s": 1.0}
-    runs = {}  # (family, N) -> {repetition: seconds}
-    dims = {}
+    runs = {}  # N -> {repetition: benchmark}
     for b in out["bench"]["benchmarks"]:
         if b.get("run_type") == "aggregate" or b.get("error_occurred"):
             continue
         family, n = b["run_name"].split("/")[0], int(b["run_name"].split("/")[1])
-        runs.setdefault((family, n), {})[b.get("repetition_index", 0)] = b["real_time"] * unit[b["time_unit"]]
-        dims[n] = int(b["n"])
-    sizes = sorted({n for (_, n) in runs})
+        if family == "BM_PairedThreads":
+            runs.setdefault(n, {})[b.get("repetition_index", 0)] = b
     rows, figures = [], {}
-    time_text = lambda t: f"{t * 1e3:.3g} ms" if t >= 1e-3 else f"{t * 1e6:.3g} us"
-    for n in sizes:
-        one, two = runs[("BM_StepBatchedWallOneThread", n)], runs[("BM_StepBatchedWallTwoThreads", n)]
-        paired = [one[r] / two[r] for r in sorted(set(one) & set(two))]
+    time_text = lambda t: f"{t * 1e3:.3g} ms" if t >= 1e-3 else f"{t * 1e6:.3g} us"  # noqa: E731
+    repetitions = []
+    for n in sorted(runs):
+        reps = list(runs[n].values())
+        paired = [b["speedup"] for b in reps]
         speedup = statistics.median(paired)
-        rows.append([n, dims[n], time_text(statistics.median(one.values())), time_text(statistics.median(two.values())),
+        rows.append([n, int(reps[0]["n"]), time_text(statistics.median(b["a_seconds"] for b in reps)),
+                     time_text(statistics.median(b["b_seconds"] for b in reps)),
                      f"{speedup:.2f}x [{min(paired):.2f}, {max(paired):.2f}]"])
         figures[f"speedup_{n}"] = fixed(speedup, 2)
         figures[f"speedup_{n}_min"] = fixed(min(paired), 2)
         figures[f"speedup_{n}_max"] = fixed(max(paired), 2)
+        repetitions.append(len(paired))
     ctx = out["bench"]["context"]
-    figures["table"] = table(["N", "n", "one thread", "ThreadPool of 2", "speed-up, median [range] of paired repetitions"], rows)
-    figures["repetitions"] = str(len(paired))
+    figures["table"] = table(["N", "n", "one thread, per step", "ThreadPool of 2, per step",
+                              "speed-up, median [range] over repetitions"], rows)
+    figures["repetitions"] = str(min(repetitions)) if repetitions else "0"
     figures["cpus"] = str(ctx.get("num_cpus", "?"))
     figures["build"] = f"{ctx.get('compiler', '?').strip()}, {ctx.get('cxx_flags', '?')}, Eigen SIMD {ctx.get('eigen_simd', '?')}"
     return figures
@@ -510,11 +512,11 @@ SOURCES = {
         "file": "docs/figures/threads.figures.json",
         # Optional: a build without benchmarks (SYLVA_BUILD_BENCHMARKS=OFF) has no bench_slam_step.
         "runs": {"bench?": "test -x {bin}/../bench/bench_slam_step || exit 77; "
-                           "{bin}/../bench/bench_slam_step --benchmark_filter=BM_StepBatchedWall "
+                           "{bin}/../bench/bench_slam_step --benchmark_filter=BM_PairedThreads "
                            "--benchmark_repetitions=5 --benchmark_enable_random_interleaving=true "
                            "--benchmark_format=json"},
         "quick": {"bench?": "test -x {bin}/../bench/bench_slam_step || exit 77; "
-                            "{bin}/../bench/bench_slam_step --benchmark_filter=BM_StepBatchedWall "
+                            "{bin}/../bench/bench_slam_step --benchmark_filter=BM_PairedThreads "
                             "--benchmark_repetitions=2 --benchmark_min_time=0.001 --benchmark_format=json"},
         "figures": threads_figures,
     },

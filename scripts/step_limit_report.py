@@ -75,6 +75,13 @@ def analyse(runs, gemm):
             "runs": len(common),
             "rank_over_floor": statistics.median(rank[r]["seconds"] / f for r, f in zip(common, floors)),
         }
+        # The two dense kernels of the update alone (the gain and the rank update), against the
+        # limit of the same run: no bookkeeping around them can make the step cheaper than that.
+        gain = runs.get(("PhaseGain", n_landmarks), {})
+        with_gain = [(r, lim) for r, lim in zip(common, limits) if r in gain]
+        if with_gain:
+            row["gain"] = statistics.median(gain[r]["seconds"] for r, _ in with_gain)
+            row["kernel_ratios"] = [(gain[r]["seconds"] + rank[r]["seconds"]) / lim for r, lim in with_gain]
         # The phases, from prefixes of the same run (medians over the runs).
         predict = runs.get(("PhasePredict", n_landmarks), {})
         linearize = runs.get(("PhaseLinearize", n_landmarks), {})
@@ -132,6 +139,47 @@ def section(name, label, rows, gemm, context, w, figures):
         figures[f"{label}_rest_share_{r['N']}"] = f"{100 * max(0.0, p['rest']) / r['step']:.0f}"
         figures[f"{label}_rank_over_floor_{r['N']}"] = f"{r['rank_over_floor']:.2f}"
     w("")
+    kernel_section(label, rows, failing, w, figures)
+
+
+def kernel_section(label, rows, failing, w, figures):
+    """Where the criterion fails: can any step built on these kernels meet it?"""
+    rows = [r for r in rows if "kernel_ratios" in r]
+    if not rows:
+        return
+    w("What the update's two dense kernels allow: `BM_PhaseGain` (the Cholesky factor of S, L^-1 and "
+      "the gain W = P H^T L^-T, by the filter's own `SymmetricUpdate::increment`) plus "
+      "`BM_PhaseRankUpdate`, at the step's n and rank, over the limit of the same run. A step also "
+      "predicts, linearizes and forms P H^T and S, so it cannot take less than these two: where their "
+      "sum exceeds the target in every run, no bookkeeping can meet it with these kernels, and only "
+      "faster small-matrix kernels (closer to the GEMM peak at these sizes) or fewer flops would.")
+    w("")
+    w(f"| N | gain | rank update | (gain + rank update) / limit: median [range] | step can meet {TARGET} with these kernels |")
+    w("|---|---|---|---|---|")
+    out_of_reach = []
+    for r in rows:
+        k = r["kernel_ratios"]
+        reachable = min(k) <= TARGET
+        if not reachable:
+            out_of_reach.append(str(r["N"]))
+        rank = r["phases"]["rank"] if "phases" in r else None
+        w(f"| {r['N']} | {us(r['gain'])} | {us(rank) if rank is not None else '-'} | "
+          f"{statistics.median(k):.2f} [{min(k):.2f}, {max(k):.2f}] | "
+          f"{'in some run' if reachable else '**no run**'} |")
+        figures[f"{label}_kernels_ratio_{r['N']}"] = f"{statistics.median(k):.2f}"
+    w("")
+    figures[f"{label}_kernels_out_of_reach"] = ", ".join(out_of_reach) if out_of_reach else "none"
+    fixable = [n for n in failing if n not in out_of_reach]
+    if failing and not fixable:
+        w(f"At every size where the criterion fails ({', '.join(failing)}), the two kernels alone exceed "
+          f"{TARGET}x the limit in every run: no step built on them can meet it on this machine.")
+        w("")
+    elif failing:
+        beyond = [n for n in failing if n in out_of_reach]
+        w(f"Of the sizes where the criterion fails ({', '.join(failing)}), the two kernels alone exceed "
+          f"{TARGET}x the limit in every run at {', '.join(beyond) or 'none'}; at {', '.join(fixable)} they "
+          "leave room, and the step's other costs or the machine's noise decide.")
+        w("")
 
 
 def gain_section(steps, w, figures):
@@ -191,7 +239,9 @@ def main():
       "rank update P -= W W^T alone at the step's n and rank. So *linearization* = Linearize - Predict "
       "and *update without the rank update* (P H^T, S and its Cholesky factor, the gain "
       "W = P H^T L^-T, the mean) = StepBatched - Linearize - RankUpdate. *rank update / compute floor* "
-      "says how far the one part whose flops define the floor is from the GEMM peak at that size.")
+      "says how far the one part whose flops define the floor is from the GEMM peak at that size. "
+      "`BM_PhaseGain` times the update's other dense kernel alone (the factor of S and the gain) at the "
+      "step's n and rank, for what these kernels allow (below each build's phases).")
     w("")
     steps = {}
     for label, path, name in (("baseline", args.baseline, "Baseline build"), ("native", args.native, "Native build")):
