@@ -225,22 +225,29 @@ void timePrefix(benchmark::State& state, Prefix prefix) {
 void BM_PhasePredict(benchmark::State& state) { timePrefix(state, Prefix::kPredict); }
 void BM_PhaseLinearize(benchmark::State& state) { timePrefix(state, Prefix::kLinearize); }
 
-void BM_PhaseRankUpdate(benchmark::State& state) {
-  const int landmarks = static_cast<int>(state.range(0));
+/// The rank of each timed step of lap 2 at map size `landmarks`: 2 per observation of a
+/// landmark already in the end-of-lap-1 map (what BM_PhaseRankUpdate and BM_PhaseGain replay).
+std::vector<int> timedStepRanks(int landmarks) {
   const World& w = worldOf(landmarks);
   const PointFilter& start = endOfLapOne<PointFilter>(landmarks);
   const int first = w.world.lapBegin(1);
   const int timed = std::min(kMaxTimedSteps, w.world.stepsPerLap());
-  const int n = start.dim();
-  // The rank of each timed step: 2 per observation of a landmark already in the map.
   std::vector<int> ranks;
-  double flops = 0.0;
   for (int k = 0; k < timed; ++k) {
     int known = 0;
     for (const auto& obs : w.steps[static_cast<std::size_t>(first + k)].observations) known += start.contains(obs.id) ? 1 : 0;
     ranks.push_back(2 * known);
-    flops += static_cast<double>(n) * (n + 1) * 2 * known;
   }
+  return ranks;
+}
+
+void BM_PhaseRankUpdate(benchmark::State& state) {
+  const int landmarks = static_cast<int>(state.range(0));
+  const int n = endOfLapOne<PointFilter>(landmarks).dim();
+  const std::vector<int> ranks = timedStepRanks(landmarks);
+  const int timed = static_cast<int>(ranks.size());
+  double flops = 0.0;
+  for (int rank : ranks) flops += static_cast<double>(n) * (n + 1) * rank;
   Eigen::MatrixXd P = Eigen::MatrixXd::Identity(n, n);
   const Eigen::MatrixXd W = Eigen::MatrixXd::Constant(n, *std::max_element(ranks.begin(), ranks.end()), 1e-6);
   int k = 0;
@@ -264,17 +271,9 @@ void BM_PhaseRankUpdate(benchmark::State& state) {
 /// says what the step can reach with these kernels (docs/step-limit.md).
 void BM_PhaseGain(benchmark::State& state) {
   const int landmarks = static_cast<int>(state.range(0));
-  const World& w = worldOf(landmarks);
-  const PointFilter& start = endOfLapOne<PointFilter>(landmarks);
-  const int first = w.world.lapBegin(1);
-  const int timed = std::min(kMaxTimedSteps, w.world.stepsPerLap());
-  const int n = start.dim();
-  std::vector<int> ranks;
-  for (int k = 0; k < timed; ++k) {
-    int known = 0;
-    for (const auto& obs : w.steps[static_cast<std::size_t>(first + k)].observations) known += start.contains(obs.id) ? 1 : 0;
-    ranks.push_back(2 * known);
-  }
+  const int n = endOfLapOne<PointFilter>(landmarks).dim();
+  const std::vector<int> ranks = timedStepRanks(landmarks);
+  const int timed = static_cast<int>(ranks.size());
   const int max_rank = std::max(1, *std::max_element(ranks.begin(), ranks.end()));
   // A well-conditioned S (diagonally dominant) and P H^T of the step's shape; the values do
   // not change the kernels' work.
