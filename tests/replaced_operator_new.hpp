@@ -1,7 +1,9 @@
 #pragma once
 // The global operator new, replaced for the test executables that count allocations (or make
-// one fail). Include it in exactly one translation unit: tests/CMakeLists.txt builds a file
-// that includes it as an executable of its own, outside the unity builds.
+// one fail): the counters here, the operators in replaced_operator_new.cpp, which
+// tests/CMakeLists.txt compiles once into each executable whose files include this header
+// (test_allocation, test_allocation_slow). Their files include eigen_allocation_hook.hpp
+// first, so that every unit of one executable compiles Eigen with the same eigen_assert.
 //
 // Every allocation adds one to sylva_test::g_allocations; with sylva_test::g_fail_at = k > 0
 // the k-th counted allocation of the throwing forms throws std::bad_alloc, as a full heap
@@ -9,7 +11,6 @@
 // sanitizer's allocator (Catch2 uses the nothrow form: counted, never failed).
 
 #include <atomic>
-#include <cstdlib>
 #include <new>
 
 namespace sylva_test {
@@ -25,21 +26,3 @@ inline void countAllocation() {
 }
 
 }  // namespace sylva_test
-
-void* operator new(std::size_t size) {
-  sylva_test::countAllocation();
-  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
-  throw std::bad_alloc();
-}
-void* operator new[](std::size_t size) { return operator new(size); }
-void* operator new(std::size_t size, const std::nothrow_t&) noexcept {
-  ++sylva_test::g_allocations;
-  return std::malloc(size == 0 ? 1 : size);
-}
-void* operator new[](std::size_t size, const std::nothrow_t& tag) noexcept { return operator new(size, tag); }
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete[](void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
-void operator delete(void* p, const std::nothrow_t&) noexcept { std::free(p); }
-void operator delete[](void* p, const std::nothrow_t&) noexcept { std::free(p); }

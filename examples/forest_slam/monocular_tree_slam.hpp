@@ -1,9 +1,10 @@
 #pragma once
 // The forest examples' use of sylva::slam::MonocularTreeSlam (include/sylva/slam/
 // monocular_tree_slam.hpp): its names in this namespace, the default forest, and the
-// simulator's sightings and trees in the pipeline's input types. The class is compiled once,
-// in monocular_tree_slam.cpp (library forest_slam_pipeline), for forest_slam,
-// tree_width_study, consistency and bench/forest_slam.cpp.
+// simulator's sightings and trees in the pipeline's input types. The class is compiled once
+// per camera, in monocular_tree_slam_quaternion.cpp and monocular_tree_slam_manifold.cpp
+// (library forest_slam_pipeline), for forest_slam, tree_width_study, consistency and
+// bench/forest_slam.cpp.
 
 #include <cstdint>
 #include <vector>

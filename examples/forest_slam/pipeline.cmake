@@ -5,7 +5,8 @@
 # per program. Included from examples/forest_slam and bench (whichever comes first defines it).
 if(NOT TARGET forest_slam_pipeline)
   add_library(forest_slam_pipeline STATIC
-    ${CMAKE_CURRENT_LIST_DIR}/monocular_tree_slam.cpp
+    ${CMAKE_CURRENT_LIST_DIR}/monocular_tree_slam_quaternion.cpp
+    ${CMAKE_CURRENT_LIST_DIR}/monocular_tree_slam_manifold.cpp
     ${CMAKE_CURRENT_LIST_DIR}/forest_run.cpp)
   target_include_directories(forest_slam_pipeline PUBLIC ${CMAKE_CURRENT_LIST_DIR})
   target_link_libraries(forest_slam_pipeline PUBLIC sylva::sylva PRIVATE sylva_warnings)

@@ -5,9 +5,11 @@
 // rejection of degenerate and non-finite input, and that the analytic evaluation allocates
 // nothing (counted with a replaced global operator new and EIGEN_RUNTIME_NO_MALLOC).
 
+#include "eigen_allocation_hook.hpp"
+#include "replaced_operator_new.hpp"
+
 #include "sylva_catch.hpp"
 
-#define EIGEN_RUNTIME_NO_MALLOC
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -29,8 +31,6 @@
 #include "autodiff_check.hpp"
 #include "camera_pose.hpp"
 #include "error_helpers.hpp"
-
-#include "replaced_operator_new.hpp"
 
 using sylva_test::g_allocations;
 
