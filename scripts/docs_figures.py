@@ -367,7 +367,9 @@ def victoria_park_figures(out):
 def forest_association_figures(out):
     """docs/slam.md: forest_slam's association without ids (--association nn) against the run
     with the simulator's ids, per forest seed, for the pipeline with the tree-width sensor; and
-    the median share taken right by each pipeline with and without occlusion (--no-occlusion)."""
+    the median share taken right by each pipeline with and without occlusion (--no-occlusion),
+    and without the width comparison of point landmarks (--no-width-appearance), with the
+    median of its paired gain over the forests."""
     import statistics
     seeds = sorted({int(k.split("_")[1]) for k in out if k.startswith("ids_")})
     rows, correct, el_ratio, et_ratio = [], [], [], []
@@ -391,16 +393,23 @@ def forest_association_figures(out):
         before_own = lambda prefix: statistics.median(
             out[f"{prefix}_{seed}"][key]["association"]["paired_before_own"] /
             max(1, out[f"{prefix}_{seed}"][key]["association"]["paired_wrong"]) for seed in seeds)
-        occlusion_rows.append([name, fixed(median("nn"), 1), fixed(100 * before_own("nn"), 0),
+        occlusion_rows.append([name, fixed(median("nnuv"), 1), fixed(median("nn"), 1), fixed(100 * before_own("nn"), 0),
                                fixed(median("nnvisible"), 1)])
         figures[f"{key}_median_pct"] = fixed(median("nn"), 1)
+        figures[f"{key}_uv_only_median_pct"] = fixed(median("nnuv"), 1)
         figures[f"{key}_visible_median_pct"] = fixed(median("nnvisible"), 1)
+        # Paired by forest: the width comparison on against off, the same sightings.
+        gains = [100 * (out[f"nn_{seed}"][key]["association"]["correct_fraction"] -
+                        out[f"nnuv_{seed}"][key]["association"]["correct_fraction"]) for seed in seeds]
+        figures[f"{key}_width_gain_median_pts"] = fixed(statistics.median(gains), 1)
+        figures[f"{key}_width_gain_forests_better"] = f"{sum(g > 0 for g in gains)} of {len(gains)}"
     return {
         "seeds": f"{seeds[0]}-{seeds[-1]}",
         "table": table(["forest seed", "sightings", "taken right (%)", "paired with another tree",
                         "... while its own tree had none", "duplicate trees", "ambiguous", "e_l nn / ids",
                         "e_t nn / ids"], rows),
-        "occlusion_table": table(["pipeline", "taken right (%), median", "wrong pairings while the own tree had none (%), median",
+        "occlusion_table": table(["pipeline", "taken right, [u, v] only for point landmarks (%), median",
+                                  "taken right (%), median", "wrong pairings while the own tree had none (%), median",
                                   "taken right without occlusion (%), median"], occlusion_rows),
         "median_correct_pct": fixed(100 * statistics.median(correct), 1),
         "min_correct_pct": fixed(100 * min(correct), 1),
@@ -499,13 +508,17 @@ SOURCES = {
                  **{f"nn_{k}": f"{{bin}}/forest_slam/forest_slam --seed {k} --association nn --json --svg-prefix ''"
                     for k in range(1, 11)},
                  **{f"nnvisible_{k}": f"{{bin}}/forest_slam/forest_slam --seed {k} --association nn --no-occlusion "
-                                      f"--json --svg-prefix ''" for k in range(1, 11)}},
+                                      f"--json --svg-prefix ''" for k in range(1, 11)},
+                 **{f"nnuv_{k}": f"{{bin}}/forest_slam/forest_slam --seed {k} --association nn --no-width-appearance "
+                                 f"--json --svg-prefix ''" for k in range(1, 11)}},
         "quick": {**{f"ids_{k}": f"{{bin}}/forest_slam/forest_slam --seed {k} --frames 200 --json --svg-prefix ''"
                      for k in range(1, 3)},
                   **{f"nn_{k}": f"{{bin}}/forest_slam/forest_slam --seed {k} --frames 200 --association nn --json "
                                 f"--svg-prefix ''" for k in range(1, 3)},
                   **{f"nnvisible_{k}": f"{{bin}}/forest_slam/forest_slam --seed {k} --frames 200 --association nn "
-                                       f"--no-occlusion --json --svg-prefix ''" for k in range(1, 3)}},
+                                       f"--no-occlusion --json --svg-prefix ''" for k in range(1, 3)},
+                  **{f"nnuv_{k}": f"{{bin}}/forest_slam/forest_slam --seed {k} --frames 200 --association nn "
+                                  f"--no-width-appearance --json --svg-prefix ''" for k in range(1, 3)}},
         "figures": forest_association_figures,
     },
     "threads": {

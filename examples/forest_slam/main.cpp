@@ -313,6 +313,15 @@ int main(int argc, char** argv) {
                  "exceeds this chi-square quantile")
       ->capture_default_str()
       ->check(CLI::Range(0.5, 0.9999999));
+  bool no_width_appearance = false;
+  app.add_flag("--no-width-appearance", no_width_appearance,
+               "--association nn: compare landmarks that predict [u, v] only on [u, v] alone, not also on the width "
+               "predicted from their last sighting");
+  app.add_option("--width-appearance-tolerance", slam_options.width_appearance_tolerance,
+                 "--association nn: relative standard deviation of a point landmark's predicted width beyond the "
+                 "width noise")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 10.0));
   std::string csv_prefix, write_recording, detections_file, camera_file, initial_state_file;
   app.add_option("--csv-prefix", csv_prefix,
                  "write each pipeline's estimate: PREFIX_<pipeline>_trajectory.csv and PREFIX_<pipeline>_map.csv");
@@ -327,6 +336,7 @@ int main(int argc, char** argv) {
                  "with --detections: the camera's state at the first frame (CSV, 13 values; it gives the map its "
                  "frame and scale)");
   CLI11_PARSE(app, argc, argv);
+  slam_options.width_appearance = !no_width_appearance;
   scenario_options.observer.occlusion = !no_occlusion;
   scenario_options.trajectory.dt_s = 1.0 / frame_rate_hz;
 

@@ -112,10 +112,11 @@ enum class TrunkAssociation {
   kKnownIds,  ///< TrunkSighting::id names the tree (a tracker's ids, or a simulator's)
   /// The ids are ignored: each sighting pairs with the mapped tree nearest to it in NIS,
   /// measured through that tree's own model ([u, v] for points, [u, v, w] for trees with a
-  /// radius) at the predicted state, within a chi-square gate; each tree takes at most one
-  /// sighting (greedy by NIS over its gate). A sighting that pairs with no tree starts one only
-  /// when its NIS to every tree exceeds chi2(dim, new_tree_probability); otherwise it is
-  /// ambiguous and dropped.
+  /// radius) at the predicted state, points also on the width predicted from their last
+  /// sighting (`TreeSlamOptions::width_appearance`), within a chi-square gate; each tree
+  /// takes at most one sighting (greedy by NIS over its gate). A sighting that pairs with no
+  /// tree starts one only when its NIS to every tree exceeds chi2(dim, new_tree_probability);
+  /// otherwise it is ambiguous and dropped.
   kNearestNeighbor,
 };
 inline const char* associationName(TrunkAssociation a) {
@@ -158,6 +159,15 @@ struct TreeSlamOptions {
   TrunkAssociation association = TrunkAssociation::kKnownIds;
   double association_gate_probability = 0.999;  ///< kNearestNeighbor: gate of a pairing
   double new_tree_probability = 0.99999;        ///< kNearestNeighbor: the new-tree test
+  /// kNearestNeighbor: a landmark whose model predicts [u, v] only (inverse depth, XYZ) is
+  /// also compared on the width w. Its width is predicted from its last sighting's,
+  /// w_last * d_last / d (the trunk's image width goes as one over its depth d, each depth
+  /// that of the landmark's estimate at the time), and the pairing and new-tree tests take
+  /// the squared difference over its variance as a third degree of freedom. Off: [u, v] only.
+  bool width_appearance = true;
+  /// Relative standard deviation of that predicted width beyond the width noise: the error of
+  /// the depth ratio d_last / d.
+  double width_appearance_tolerance = 0.05;
 };
 
 /// What a simulator knows about one frame, for the diagnostics of `TreeSlamOptions`
@@ -211,8 +221,9 @@ struct FrameProfile {
 
 /// `Camera` is the filter's robot: ConstantVelocity3D (its quaternion's 4 entries in the
 /// covariance, renormalized after each update) or OnManifold<ConstantVelocity3D> (the
-/// covariance on the 12-dimensional tangent, the update composed through plus). The two
-/// instantiations are compiled once, in monocular_tree_slam.cpp.
+/// covariance on the 12-dimensional tangent, the update composed through plus). The examples
+/// compile each instantiation once, in a unit of its own
+/// (examples/forest_slam/monocular_tree_slam_*.cpp).
 template <typename Camera>
 class BasicMonocularTreeSlam {
  public:
@@ -316,6 +327,16 @@ class BasicMonocularTreeSlam {
     std::vector<char> clear;  ///< per sighting: NIS to every tree beyond the new-tree gate
   };
   NearestPairing pairNearest(const Filter& ekf, const std::vector<Seen>& seen) const;
+  /// Depth (camera-frame z, metres) of landmark `id`'s estimate in `ekf`'s camera; +inf for an
+  /// inverse-depth landmark at or beyond infinity.
+  static double depthOf(const Filter& ekf, Id id);
+  /// kNearestNeighbor with `width_appearance`: each point landmark's last sighting width and
+  /// its depth then (recordAppearance, at the end of each frame).
+  struct Appearance {
+    double width_px;
+    double depth_m;
+  };
+  void recordAppearance();
   /// kNearestNeighbor: sets the id of every sighting in `seen` (a mapped tree, a new tree, or
   /// -1 for an ambiguous one) from the predicted state (see TrunkAssociation).
   void associate(std::vector<Seen>& seen, FrameReport& report);
@@ -344,6 +365,7 @@ class BasicMonocularTreeSlam {
   std::vector<Candidate> candidates_;
   std::vector<Seen> sightings_;
   Id next_tree_id_ = 0;  ///< kNearestNeighbor: the next new tree's id (mapped ids skipped)
+  std::unordered_map<Id, Appearance> appearance_;
   FrameProfile* profile_ = nullptr;
 };
 

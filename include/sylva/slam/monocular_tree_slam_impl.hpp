@@ -149,6 +149,7 @@ FrameReport BasicMonocularTreeSlam<Camera>::processFrame(double dt,
     }
   }
   if (ideal) setIdealLandmarks(*truth);  // for the landmarks added or converted above
+  if (options_.association == TrunkAssociation::kNearestNeighbor && options_.width_appearance) recordAppearance();
   return report;
 }
 
@@ -191,6 +192,23 @@ typename BasicMonocularTreeSlam<Camera>::NearestPairing BasicMonocularTreeSlam<C
       if (llt.info() != Eigen::Success) return;
       const std::size_t j = trees.size();
       trees.push_back(slot.id);
+      // The width a point landmark predicts from its last sighting (width_appearance).
+      int dof = M;
+      double width_hat = 0.0, width_variance = 0.0;
+      if constexpr (M == 2) {
+        const auto last = appearance_.find(slot.id);
+        if (options_.width_appearance && last != appearance_.end()) {
+          const double depth = depthOf(ekf, slot.id);
+          const double before = last->second.depth_m;
+          const double ratio =
+              std::isfinite(depth) && std::isfinite(before) && depth > 0.0 && before > 0.0 ? before / depth : 1.0;
+          width_hat = last->second.width_px * ratio;
+          const double sigma_w = options_.width_sigma_px;
+          const double relative = options_.width_appearance_tolerance * width_hat;
+          width_variance = sigma_w * sigma_w * (1.0 + ratio * ratio) + relative * relative;
+          dof = 3;
+        }
+      }
       for (std::size_t i = 0; i < seen.size(); ++i) {
         Vec<M> z;
         if constexpr (M == 2) {
@@ -198,9 +216,10 @@ typename BasicMonocularTreeSlam<Camera>::NearestPairing BasicMonocularTreeSlam<C
         } else {
           z = seen[i].z;
         }
-        const double nis = llt.matrixL().solve(Vec<M>(sylva::detail::residual(model, z, lin.z_hat))).squaredNorm();
-        closest[i] = std::min(closest[i], nis / new_gate[M]);
-        if (nis < pair_gate[M]) candidates.push_back({nis / pair_gate[M], i, j});
+        double nis = llt.matrixL().solve(Vec<M>(sylva::detail::residual(model, z, lin.z_hat))).squaredNorm();
+        if (dof != M) nis += (seen[i].z[2] - width_hat) * (seen[i].z[2] - width_hat) / width_variance;
+        closest[i] = std::min(closest[i], nis / new_gate[dof]);
+        if (nis < pair_gate[dof]) candidates.push_back({nis / pair_gate[dof], i, j});
       }
     });
   }
@@ -218,6 +237,35 @@ typename BasicMonocularTreeSlam<Camera>::NearestPairing BasicMonocularTreeSlam<C
   }
   for (std::size_t i = 0; i < seen.size(); ++i) out.clear[i] = closest[i] > 1.0 ? 1 : 0;
   return out;
+}
+
+template <typename Camera>
+double BasicMonocularTreeSlam<Camera>::depthOf(const Filter& ekf, Id id) {
+  const Vec<13>& camera = ekf.robotMean();
+  const Vec<4> q = camera.template segment<4>(3).normalized();
+  const Vec<3> t = camera.template head<3>();
+  const Vec<3> optical_axis = rotationMatrix<double>(q).col(2);  // the camera's z in the world
+  return ekf.visit(id, [&](auto type) {
+    using Landmark = typename decltype(type)::type;
+    const auto l = ekf.template landmarkMean<Landmark>(id);
+    if constexpr (std::is_same_v<Landmark, InverseDepth> || std::is_same_v<Landmark, InverseDepthRadius>) {
+      // the camera-frame z of rho (anchor - t) + m, the ray scaled by rho, over rho
+      const double rho = l[5];
+      if (!(rho > 0.0)) return std::numeric_limits<double>::infinity();
+      const Vec<3> h = rho * (l.template head<3>() - t) + InverseDepth::direction<double>(l[3], l[4]);
+      return optical_axis.dot(h) / rho;
+    } else {
+      return optical_axis.dot(Vec<3>(l.template head<3>() - t));
+    }
+  });
+}
+
+template <typename Camera>
+void BasicMonocularTreeSlam<Camera>::recordAppearance() {
+  for (const Seen& s : sightings_) {
+    if (s.id < 0 || !ekf_.contains(s.id)) continue;
+    appearance_[s.id] = Appearance{s.z[2], depthOf(ekf_, s.id)};
+  }
 }
 
 template <typename Camera>
