@@ -156,7 +156,7 @@ FrameReport BasicMonocularTreeSlam<Camera>::processFrame(double dt,
 template <typename Camera>
 typename BasicMonocularTreeSlam<Camera>::NearestPairing BasicMonocularTreeSlam<Camera>::pairNearest(
     const Filter& ekf, const std::vector<Seen>& seen) const {
-  struct Candidate {
+  struct Pairing {
     double score;  ///< NIS over the pairing gate of its dimension: < 1 passes
     std::size_t sighting;
     std::size_t tree;
@@ -166,7 +166,7 @@ typename BasicMonocularTreeSlam<Camera>::NearestPairing BasicMonocularTreeSlam<C
     pair_gate[dim] = chiSquareGate(dim, options_.association_gate_probability);
     new_gate[dim] = chiSquareGate(dim, options_.new_tree_probability);
   }
-  std::vector<Candidate> candidates;
+  std::vector<Pairing> candidates;
   std::vector<Id> trees;
   std::vector<double> closest(seen.size(), kUnpredictable);  // smallest NIS over the new-tree gate
   // Each tree is linearized once, through its own model, and its S factored once.
@@ -223,14 +223,14 @@ typename BasicMonocularTreeSlam<Camera>::NearestPairing BasicMonocularTreeSlam<C
       }
     });
   }
-  std::sort(candidates.begin(), candidates.end(), [](const Candidate& a, const Candidate& b) {
+  std::sort(candidates.begin(), candidates.end(), [](const Pairing& a, const Pairing& b) {
     return std::tie(a.score, a.sighting, a.tree) < std::tie(b.score, b.sighting, b.tree);
   });
   NearestPairing out;
   out.tree.assign(seen.size(), -1);
   out.clear.assign(seen.size(), 0);
   std::vector<char> tree_taken(trees.size(), 0);
-  for (const Candidate& c : candidates) {
+  for (const Pairing& c : candidates) {
     if (out.tree[c.sighting] >= 0 || tree_taken[c.tree]) continue;
     tree_taken[c.tree] = 1;
     out.tree[c.sighting] = trees[c.tree];
