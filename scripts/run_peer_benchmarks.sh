@@ -25,7 +25,8 @@
 #   WHOLE_SIZES  map sizes N (a subset of SIZES) at which the baseline program also times the
 #                whole run, both laps from an empty map: MRPT kfEKFAlaDavison against sylva's
 #                replica of its fusion through the compressed EKF (default none: at N = 2000
-#                MRPT's whole run takes about ten minutes per repetition)
+#                MRPT's whole run took 35 to 41 minutes per repetition on the 2-core
+#                machine of 2026-11-30, so three repetitions take about two hours)
 #   BENCH_ARGS   extra Google Benchmark flags for both runs
 #   CXX          the compiler for sylva's side, read at the first configure of BUILD_DIR
 #                (e.g. CXX=clang++ scripts/run_peer_benchmarks.sh build-peers-clang): sylva's

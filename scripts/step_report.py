@@ -79,6 +79,21 @@ def peer_runs(paths):
     return runs
 
 
+def peer_counters(paths):
+    """{(family, N): {repetition: {counter: value}}} of the single runs of bench_peers JSON (the
+    whole runs' states_agree and state differences)."""
+    counters = defaultdict(dict)
+    for path in paths or []:
+        data = json.load(open(path, encoding="utf-8"))
+        for b in data.get("benchmarks", []):
+            parts = b.get("run_name", b["name"]).split("/")
+            if b.get("run_type") == "aggregate" or b.get("error_occurred") or len(parts) < 2 or not parts[1].isdigit():
+                continue
+            counters[(parts[0], int(parts[1]))][b.get("repetition_index", 0)] = {
+                k: v for k, v in b.items() if isinstance(v, (int, float)) and not isinstance(v, bool)}
+    return counters
+
+
 def paired(numerator, denominator):
     """Ratios numerator / denominator of the repetitions both have (the same run)."""
     return [numerator[r] / denominator[r] for r in sorted(numerator) if r in denominator and denominator[r]]
@@ -185,6 +200,7 @@ def main():
     step, counters, ctx = load_step(a.step)
     srun = step_runs(a.step)
     peer_base_runs = peer_runs(a.peers_baseline)
+    peer_base_counters = peer_counters(a.peers_baseline)
     peers = load_peers(a.peers_native)
     baseline = load_peers(a.peers_baseline)
     batched = step.get("StepBatched", {})
@@ -250,9 +266,17 @@ def main():
     whole = paired(peer_base_runs.get(("mrpt_davison_whole", 2000), {}),
                    peer_base_runs.get(("sylva_davison_compressed_whole", 2000), {}))
     if whole:
+        # states_agree: the compressed run's final state equals MRPT's within the harness's
+        # tolerances (bench/peers/bench_peers.cpp); a run whose states differ does not count.
+        agree = [peer_base_counters.get(("sylva_davison_compressed_whole", 2000), {}).get(r, {}).get("states_agree", 1.0)
+                 for r in sorted(peer_base_runs[("sylva_davison_compressed_whole", 2000)])]
+        cov = [peer_base_counters.get(("sylva_davison_compressed_whole", 2000), {}).get(r, {}).get("max_cov_relative_diff")
+               for r in sorted(peer_base_runs[("sylva_davison_compressed_whole", 2000)])]
+        states = ("final states equal in every run" if all(agree) else
+                  f"final states differ: covariance by {max(c for c in cov if c is not None):.2g} of max |P|")
         md.append(f"| whole run, circle world N = 2000, both baseline: MRPT kfEKFAlaDavison / sylva's replica of its "
-                  f"fusion through the compressed EKF (final states checked equal) | >= 300 | {spread(whole, x)} | "
-                  f"{len(whole)} | {verdict(min(whole) >= 300)} |")
+                  f"fusion through the compressed EKF (final states checked equal) | >= 300 | {spread(whole, x)}; "
+                  f"{states} | {len(whole)} | {verdict(min(whole) >= 300 and all(agree))} |")
     else:
         md.append("| whole run, circle world N = 2000, both baseline: MRPT kfEKFAlaDavison / sylva compressed | "
                   ">= 300 | not in this run (`WHOLE_SIZES=2000 bash scripts/run_peer_benchmarks.sh` times it) | - | "

@@ -41,7 +41,7 @@
 ///     sylva sequential for itself) to 1e-9.
 ///
 /// Whole runs (registered only for the sizes of --peers_whole_sizes; none by default, since
-/// MRPT's whole run at N = 2000 takes minutes): every step of both laps from an empty map, one
+/// MRPT's whole run at N = 2000 takes over half an hour): every step of both laps from an empty map, one
 /// iteration per repetition, timed as a whole.
 ///   mrpt_davison_whole             MRPT kfEKFAlaDavison
 ///   sylva_davison_compressed_whole sylva's replica of that fusion (kAlaDavison above) through
@@ -51,8 +51,8 @@
 ///                                  this world at N = 2000 (chosen on those lap-2 runs)
 /// The compressed run's final state is compared, by landmark id, with MRPT's final state from
 /// the same program (mean to 1e-9 of its largest coordinate, covariance to 1e-9 of max |P|;
-/// counters max_mean_relative_diff and max_cov_relative_diff); a disagreement is reported as
-/// an error. Counter ms_per_run.
+/// counters max_mean_relative_diff and max_cov_relative_diff; states_agree is 1 within both
+/// tolerances, else 0, and the run keeps its time). Counter ms_per_run.
 ///
 /// Extra flags (before Google Benchmark's own):
 ///   --peers_sizes=50,100,200,500,1000,2000   map sizes N
@@ -402,8 +402,14 @@ void runWhole(benchmark::State& state, WholeRun which, int landmarks) {
     const double mean_relative = d.max_mean / mean_scale;
     state.counters["max_mean_relative_diff"] = mean_relative;
     state.counters["max_cov_relative_diff"] = d.max_cov_relative;
-    if (!d.same_landmarks || mean_relative > kMeanTolerance || d.max_cov_relative > kCovarianceTolerance)
-      state.SkipWithError(("the final states of the whole runs disagree: " + d.summary()).c_str());
+    // Whether the states agree is a counter, not an error: an error would discard the time of a
+    // run that MRPT's side took over half an hour to pair with (N = 2000). The report
+    // (scripts/step_report.py) counts the criterion met only where they agree.
+    state.counters["states_agree"] =
+        d.same_landmarks && mean_relative <= kMeanTolerance && d.max_cov_relative <= kCovarianceTolerance ? 1.0 : 0.0;
+    if (state.counters["states_agree"] == 0.0)
+      std::fprintf(stderr, "peers: N = %d, whole run: the final states disagree beyond the tolerances (%g, %g)\n",
+                   landmarks, kMeanTolerance, kCovarianceTolerance);
   }
 }
 
