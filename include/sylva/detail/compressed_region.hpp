@@ -33,6 +33,24 @@
 /// block's own O(m a^2) update, whatever the size of B; `globalUpdate` brings B up to date in
 /// O(n^2 a), once, when the region changes. The result is the plain EKF's, up to round-off.
 ///
+/// Scaled accumulators. The recurrences hold for any starting value phi_0 of phi, with P_AB0
+/// replaced by phi_0^-1 P_AB0: nothing above uses phi = I at the start. That choice matters
+/// for round-off. With phi_0 = I, psi collects H_A^T S^-1 H_A, which grows like 1/sigma^2 in
+/// the directions a precise sensor pins down (psi near 1e6 on the circle world), while the
+/// stored rows V = P_BA0 are small in just those directions: V psi V^T then comes out of
+/// cancellations between terms many orders of magnitude larger than itself, and over a whole
+/// circle-world run at N = 2000 the state drifted from the plain filter's several orders of
+/// magnitude further than round-off moves the plain filter itself. So the first
+/// update of a region (`stageScale`, `commitScale`) restarts the accumulators from
+/// phi_0 = R, a Cholesky factor of P_AA (R R^T = P_AA), and replaces the stored rows by
+/// V' = V R^-T. For a static A, R^T psi R = I - R^-1 P_AA,posterior R^-T lies between 0 and I,
+/// and V' V'^T = P_BA P_AA^-1 P_AB <= P_BB: every accumulator is then on the scale of the
+/// covariance. Any invertible R gives the same estimates, so R is taken from P_AA plus a tiny
+/// multiple of I (a semi-definite P_AA, e.g. a robot whose pose is known exactly, still has a
+/// factor), and from I if even that fails. Until the region's next global update, the stored
+/// rows against A hold V', which the reads of B below correct like V (they only ever see
+/// them through the accumulators).
+///
 /// A landmark that enters the state during a region joins A (`extend`): its stored
 /// cross-covariance with B is zero, and its rows of phi, J_new phi_robot, carry the
 /// dependence on B that it inherits from the robot.
@@ -74,6 +92,7 @@ class BasicCompressedRegion {
     psi_.swap(staged_psi_);
     theta_.swap(staged_theta_);
     steps_ = 0;
+    scaled_ = false;
   }
   void begin(int a) {
     stageBegin(a);
@@ -85,6 +104,49 @@ class BasicCompressedRegion {
   /// Local steps (predictions and updates) since `begin` or the last global update: while
   /// there are none, the stored state is up to date.
   long steps() const { return steps_; }
+  /// Whether the accumulators (and the stored rows against A) are scaled by R: from the
+  /// region's first scaled update (`commitScale`) to its next global update.
+  bool scaled() const { return scaled_; }
+
+  /// Stages the rescaling of the file comment ("Scaled accumulators") before the region's
+  /// first update: R from the active block `P_AA` (its lower triangle is read), phi R, and the
+  /// stored rows V' = V R^-T from `V` (the (n - a) x a block below A). Allowed only while no
+  /// update has touched psi and theta since `begin` or the last global update (predictions
+  /// may have: they only move phi). Workspaces only: the region is unchanged. Returns phi R,
+  /// the phi the update being staged must use.
+  template <typename ActiveBlock, typename StoredRows>
+  const Eigen::MatrixXd& stageScale(const ActiveBlock& P_AA, const StoredRows& V) {
+    const int a = activeDim();
+    resizeWorkspace(scale_factor_, a, a);
+    resizeWorkspace(staged_phi_, a, a);
+    resizeWorkspace(scaled_rows_, V.rows(), a);
+    if (scale_llt_.rows() != a) scale_llt_ = Eigen::LLT<Eigen::MatrixXd>(a);
+    // R R^T = P_AA + tol I: tol makes a semi-definite P_AA factorizable (a known robot pose)
+    // and changes no estimate (any invertible R does).
+    scale_factor_ = P_AA.template selfadjointView<Eigen::Lower>();
+    const double tol = 1e-12 * std::max(scale_factor_.diagonal().cwiseAbs().maxCoeff(), 1e-300);
+    scale_factor_.diagonal().array() += tol;
+    scale_llt_.compute(scale_factor_);
+    if (scale_llt_.info() == Eigen::Success && scale_llt_.matrixLLT().allFinite()) {
+      scale_factor_ = scale_llt_.matrixL();
+    } else {
+      scale_factor_.setIdentity();  // an indefinite P_AA: the unscaled accumulators
+    }
+    staged_phi_.noalias() = phi_ * scale_factor_.template triangularView<Eigen::Lower>();
+    scaled_rows_ = V;
+    scale_factor_.transpose().template triangularView<Eigen::Upper>().template solveInPlace<Eigen::OnTheRight>(
+        scaled_rows_);  // V' R^T = V
+    return staged_phi_;
+  }
+  /// Applies the staged rescaling: phi <- phi R, and the stored rows `V` (the block that was
+  /// given to `stageScale`) <- V'. Allocates nothing.
+  template <typename StoredRows>
+  void commitScale(StoredRows&& V) {
+    phi_.swap(staged_phi_);
+    V = scaled_rows_;
+    scaled_ = true;
+  }
+
 
   /// A prediction that moves the robot's coordinates, the first R of A, by J and leaves the
   /// others where they are: phi <- J phi on those rows. Allocates nothing.
@@ -174,9 +236,8 @@ class BasicCompressedRegion {
   /// the mean, both with their A entries kept current by the caller. With V = P_BA0 (the
   /// stored (n - a) x a block below A):
   ///   x_B  += V theta
-  ///   P_BB -= V psi V^T, as W W^T with W = V Q sqrt(D) from psi = Q D Q^T (LDLT with
-  ///           pivoting; psi is positive semi-definite, so D >= 0 but for round-off, which is
-  ///           clamped), through the filter's tiled lower rank update
+  ///   P_BB -= (V psi) V^T, on the lower triangle, through the filter's tiled kernel
+  ///           (detail::subtractLowerProduct)
   ///   P_BA  = V phi^T.
   /// Everything is computed in workspaces before anything is written, so a failed allocation
   /// leaves P and x as they were. Then starts over in the same region.
@@ -187,29 +248,25 @@ class BasicCompressedRegion {
     if (steps_ == 0) return;
     if (b > 0) {
       const auto V = P.block(a, 0, b, a);
-      // A factorization of the new size is made first (Eigen's resize inside compute would
-      // leave it dangling if its allocation failed).
-      if (psi_ldlt_.rows() != a) psi_ldlt_ = Eigen::LDLT<Eigen::MatrixXd>(a);
-      psi_ldlt_.compute(psi_);
-      auto QsqrtD = Eigen::Map<Eigen::MatrixXd>(grown(q_sqrt_d_, static_cast<Eigen::Index>(a) * a), a, a);
-      QsqrtD = psi_ldlt_.matrixL();
-      QsqrtD = psi_ldlt_.transpositionsP().transpose() * QsqrtD;
-      for (int k = 0; k < a; ++k) QsqrtD.col(k) *= std::sqrt(std::max(0.0, psi_ldlt_.vectorD()[k]));
+      // P_BB -= (V psi) V^T directly, psi unfactored: a factor of psi (a pivoted LDLT, with
+      // its round-off's negative pivots clamped, used before) missed V psi V^T at a loop
+      // closure of the circle world by orders of magnitude more than the direct product.
       auto W = Eigen::Map<Eigen::MatrixXd>(grown(w_, b * a), b, a);
-      W.noalias() = V * QsqrtD;
+      W.noalias() = V * psi_;
       auto U = Eigen::Map<Eigen::MatrixXd>(grown(u_, b * a), b, a);
       U.noalias() = V * phi_.transpose();
       auto dx = Eigen::Map<Eigen::VectorXd>(grown(dx_, b), b);
       dx.noalias() = V * theta_;
       // Nothing below allocates.
       x.tail(b) += dx;
-      subtractLowerRankUpdate(P.bottomRightCorner(b, b), W, parallel);
+      subtractLowerProduct(P.bottomRightCorner(b, b), W, V, parallel);
       P.block(a, 0, b, a) = U;
     }
     phi_.setIdentity();
     psi_.setZero();
     theta_.setZero();
     steps_ = 0;
+    scaled_ = false;
   }
 
   /// The current value of blocks that involve B, from the stored ones (for reads between
@@ -233,12 +290,14 @@ class BasicCompressedRegion {
   Eigen::MatrixXd phi_, psi_;
   Eigen::VectorXd theta_;
   long steps_ = 0;
+  bool scaled_ = false;
   // Workspaces: they grow to the largest step (and state) seen and then stay.
   Eigen::VectorXd hphi_t_, phi_t_, v_, d_theta_, d_psi_, d_phi_;
   Eigen::MatrixXd staged_phi_, staged_psi_;
   Eigen::VectorXd staged_theta_;
-  Eigen::VectorXd q_sqrt_d_, w_, u_, dx_;
-  Eigen::LDLT<Eigen::MatrixXd> psi_ldlt_;
+  Eigen::VectorXd w_, u_, dx_;
+  Eigen::MatrixXd scale_factor_, scaled_rows_;
+  Eigen::LLT<Eigen::MatrixXd> scale_llt_;
 
   static double* grown(Eigen::VectorXd& buffer, Eigen::Index size) {
     growWorkspace(buffer, size);

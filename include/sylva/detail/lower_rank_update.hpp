@@ -2,7 +2,8 @@
 /// @file
 /// `detail::subtractLowerRankUpdate(P, W)`: P <- P - W W^T on the lower triangle of a square
 /// block P (n x n) for a tall W (n x m): the covariance update of a batched EKF update,
-/// P -= (P H^T L^-T)(P H^T L^-T)^T.
+/// P -= (P H^T L^-T)(P H^T L^-T)^T. `subtractLowerProduct(P, X, Y)`: the same for a symmetric
+/// X Y^T (the compressed EKF's global update, P_BB -= (V psi) V^T).
 ///
 /// Why not Eigen's `selfadjointView<Lower>().rankUpdate(W, -1)` on the whole matrix: Eigen
 /// packs its GEMM panels (kc x mc and kc x nc doubles) on the stack only while each panel is
@@ -62,6 +63,27 @@ void forEachTileOfPart(Eigen::Index n, Eigen::Index tile, int part, int parts, F
   }
 }
 
+/// Runs updateTile(i0, bi, j0, bj) over the tiles of the lower triangle of an n x n matrix:
+/// on the calling thread, or shared among `parallel`'s threads when n is at least `min_rows`.
+template <typename UpdateTile>
+void forEachLowerTile(Eigen::Index n, Eigen::Index tile, Parallel* parallel, Eigen::Index min_rows,
+                      const UpdateTile& updateTile) {
+  const int parts = parallel != nullptr && n >= min_rows ? parallel->concurrency() : 1;
+  if (parts <= 1) {
+    forEachTileOfPart(n, tile, 0, 1, updateTile);
+    return;
+  }
+  struct Job {
+    const UpdateTile* update;
+    Eigen::Index n, tile;
+    int parts;
+  } job{&updateTile, n, tile, parts};
+  parallel->run(parts, [](void* context, int part) {
+    const Job& j = *static_cast<const Job*>(context);
+    forEachTileOfPart(j.n, j.tile, part, j.parts, *j.update);
+  }, &job);
+}
+
 /// P <- P - W W^T, lower triangle only (the strictly upper part of P is not read; the upper
 /// part of diagonal tiles is not written). P is n x n, W is n x m. With `parallel`, and n of
 /// at least `min_rows`, the tiles are shared among its threads; the result is the same bit
@@ -69,8 +91,6 @@ void forEachTileOfPart(Eigen::Index n, Eigen::Index tile, int part, int parts, F
 template <typename PBlock, typename WMatrix>
 void subtractLowerRankUpdate(PBlock&& P, const WMatrix& W, Parallel* parallel = nullptr,
                              Eigen::Index min_rows = kParallelMinRows) {
-  const Eigen::Index n = P.rows();
-  const Eigen::Index tile = lowerRankUpdateTile(static_cast<int>(W.cols()));
   const auto updateTile = [&](Eigen::Index i0, Eigen::Index bi, Eigen::Index j0, Eigen::Index bj) {
     const auto W_j = W.middleRows(j0, bj);
     if (i0 == j0) {
@@ -79,20 +99,25 @@ void subtractLowerRankUpdate(PBlock&& P, const WMatrix& W, Parallel* parallel = 
       P.block(i0, j0, bi, bj).noalias() -= W.middleRows(i0, bi) * W_j.transpose();
     }
   };
-  const int parts = parallel != nullptr && n >= min_rows ? parallel->concurrency() : 1;
-  if (parts <= 1) {
-    forEachTileOfPart(n, tile, 0, 1, updateTile);
-    return;
-  }
-  struct Job {
-    const decltype(updateTile)* update;
-    Eigen::Index n, tile;
-    int parts;
-  } job{&updateTile, n, tile, parts};
-  parallel->run(parts, [](void* context, int part) {
-    const Job& j = *static_cast<const Job*>(context);
-    forEachTileOfPart(j.n, j.tile, part, j.parts, *j.update);
-  }, &job);
+  forEachLowerTile(P.rows(), lowerRankUpdateTile(static_cast<int>(W.cols())), parallel, min_rows, updateTile);
+}
+
+/// P <- P - X Y^T, lower triangle only, for an X Y^T the caller knows to be symmetric (e.g.
+/// X = V M, Y = V with M symmetric: no factor of M is needed). The same tiles, threads and
+/// guarantees as `subtractLowerRankUpdate`; a diagonal tile costs a full product instead of
+/// half of one.
+template <typename PBlock, typename XMatrix, typename YMatrix>
+void subtractLowerProduct(PBlock&& P, const XMatrix& X, const YMatrix& Y, Parallel* parallel = nullptr,
+                          Eigen::Index min_rows = kParallelMinRows) {
+  const auto updateTile = [&](Eigen::Index i0, Eigen::Index bi, Eigen::Index j0, Eigen::Index bj) {
+    const auto Y_j = Y.middleRows(j0, bj);
+    if (i0 == j0) {
+      P.block(j0, j0, bj, bj).template triangularView<Eigen::Lower>() -= X.middleRows(j0, bj) * Y_j.transpose();
+    } else {
+      P.block(i0, j0, bi, bj).noalias() -= X.middleRows(i0, bi) * Y_j.transpose();
+    }
+  };
+  forEachLowerTile(P.rows(), lowerRankUpdateTile(static_cast<int>(X.cols())), parallel, min_rows, updateTile);
 }
 
 }  // namespace sylva::detail

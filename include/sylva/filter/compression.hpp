@@ -105,12 +105,13 @@ class Compression final : public CompressionHooks<Ekf> {
   /// robot block, plus its landmark rows times its landmark block), then the region's
   /// staged changes.
   void stageUpdate(const Ekf& ekf, const CompressedUpdateTerms& t) override {
-    (void)ekf;
+    // The region's first update rescales its accumulators (CompressedRegion, "Scaled
+    // accumulators"); this update is then staged on the scaled phi.
+    const Eigen::MatrixXd& phi = region_.scaled() ? region_.phi() : region_.stageScale(activeBlock(ekf), storedRows(ekf));
     const int total = t.count * t.m;
     const int L = t.landmark_dim;
     const Eigen::Index stride = static_cast<Eigen::Index>(t.m) * (kRobotDim + L);
     auto HphiT = region_.hphiTransposed(total);
-    const Eigen::MatrixXd& phi = region_.phi();
     for (int i = 0; i < t.count; ++i) {
       const double* blocks = t.lins + i * stride;
       const Eigen::Map<const Eigen::MatrixXd> J_x(blocks, t.m, kRobotDim);
@@ -125,7 +126,10 @@ class Compression final : public CompressionHooks<Ekf> {
     const Eigen::Map<const Eigen::MatrixXd> gain(t.gain, region_.activeDim(), total);
     region_.stageUpdate(factor.template triangularView<Eigen::Lower>(), nu, gain, t.gain_is_k);
   }
-  void commitUpdate() override { region_.commitUpdate(); }
+  void commitUpdate(Ekf& ekf) override {
+    if (!region_.scaled()) region_.commitScale(storedRows(ekf));
+    region_.commitUpdate();
+  }
 
   void stageExtend(const double* J_robot, int rows) override {
     region_.template stageExtend<kRobotDim>(Eigen::Map<const Eigen::MatrixXd>(J_robot, rows, kRobotDim));
@@ -170,6 +174,27 @@ class Compression final : public CompressionHooks<Ekf> {
   }
 
  private:
+  /// The active block P_AA (its lower triangle is current) and the stored rows of B against A.
+  /// An update runs with the covariance's dimension cut to A (Ekf::ActiveWindow), so the
+  /// state's size is counted from the landmark slots.
+  auto activeBlock(const Ekf& ekf) const {
+    const int a = region_.activeDim();
+    return ekf.cov_.stored().topLeftCorner(a, a);
+  }
+  static int stateDim(const Ekf& ekf) {
+    int n = kRobotDim;
+    for (const LandmarkSlot& s : ekf.slots_.slots()) n += s.dim;
+    return n;
+  }
+  auto storedRows(const Ekf& ekf) const {
+    const int a = region_.activeDim();
+    return ekf.cov_.stored().block(a, 0, stateDim(ekf) - a, a);
+  }
+  auto storedRows(Ekf& ekf) const {
+    const int a = region_.activeDim();
+    return ekf.cov_.stored().block(a, 0, stateDim(ekf) - a, a);
+  }
+
   Rule rule_;
   typename Ekf::RobotState entry_robot_;  ///< the robot's mean when the region was entered
   CompressedRegion region_;

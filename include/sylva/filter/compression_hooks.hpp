@@ -63,7 +63,7 @@ class CompressionHooks {
   virtual void predictRobot(const double* F) = 0;
   /// An update of the active part: staged (may allocate, changes nothing), then committed.
   virtual void stageUpdate(const Ekf& ekf, const CompressedUpdateTerms& terms) = 0;
-  virtual void commitUpdate() = 0;
+  virtual void commitUpdate(Ekf& ekf) = 0;
   /// A landmark added at the end of the active part, J_robot (rows x kRobotDim, column-major)
   /// its Jacobian with respect to the robot.
   virtual void stageExtend(const double* J_robot, int rows) = 0;

@@ -405,8 +405,8 @@ class BasicEkf {
   /// Everything read through the public accessors is up to date: the landmark accessors,
   /// `mean()` and `covariance()` correct what B holds on the fly (O(a^2) per block, O(n^2 a)
   /// for the whole covariance), and `covarianceView()` refuses (kInvalidArgument) until
-  /// `synchronize()`. Estimates equal the plain filter's up to round-off in the tests; over a
-  /// whole circle-world run at N = 2000 they depart further (docs/filter.md, "Known problem").
+  /// `synchronize()`. Estimates equal the plain filter's up to round-off (the accumulators are
+  /// scaled by a factor of P_AA for that: docs/filter.md, "Round-off").
   ///
   /// Refused (kInvalidArgument, the filter unchanged) with LinearizationPoint::kInvariant or
   /// kObservabilityConstrained, whose transports change the whole covariance at every update.
@@ -1591,7 +1591,7 @@ class BasicEkf {
       applyMeanIncrement(delta);
       SymmetricUpdate::downdate<M>(P, gain, parallel_);
     }
-    if (compressed()) compression_->commitUpdate();
+    if (compressed()) compression_->commitUpdate(*this);
     carryCovarianceToPosterior();
     carryCovarianceAlongGauge();
     normalizeAll();
