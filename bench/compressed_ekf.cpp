@@ -16,6 +16,14 @@
 ///   BM_LapTwoCompressed  the same filter and steps with `setCompression(withinRadius(r, ahead))`
 ///                        entered at the start of lap 2 (outside the timing), and a final
 ///                        `synchronize()` (inside it)
+///   BM_WholeRunAgreement both laps from the empty map (every step of the world), with the
+///                        fusion of MRPT's kfEKFAlaDavison (bench/peers/sylva_peer.hpp: two
+///                        scalar updates per observation, so a region holds about a
+///                        thousand local updates), plain and compressed on the same inputs,
+///                        one run each: the whole-run state check of issue 19 without MRPT.
+///                        Counters: mean_difference and covariance_difference (relative to
+///                        the largest entry of the plain filter's), plain_s, compressed_s,
+///                        global_updates. Its time is the two runs together.
 /// Counters: per_step_us (the iteration's time over its steps), global_updates, active_dim at
 /// the end, and state_difference: after the stretch, the largest difference between the
 /// compressed filter's mean and covariance and the plain filter's, relative to the largest
@@ -40,12 +48,14 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
 #include <algorithm>
+#include <chrono>
 #include <map>
 #include <memory>
 #include <random>
 #include <vector>
 
 #include "common/build_context.hpp"
+#include "peers/sylva_peer.hpp"
 #include "scenario/sylva_circle_slam.hpp"
 #include "sylva/detail/compressed_region.hpp"
 #include "sylva/filter/compression.hpp"
@@ -86,8 +96,14 @@ double relativeDifference(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
   return (a - b).cwiseAbs().maxCoeff() / std::max(1e-300, b.cwiseAbs().maxCoeff());
 }
 
-/// The compressed filter's mean and covariance in the plain filter's order of landmarks.
-double stateDifference(const Filter& compressed, const Filter& plain) {
+/// How far the compressed filter's mean and covariance are from the plain filter's, each
+/// relative to the plain filter's largest entry, landmarks matched by id.
+struct Difference {
+  double mean = 0.0;
+  double covariance = 0.0;
+};
+
+Difference stateDifferences(const Filter& compressed, const Filter& plain) {
   std::vector<int> rows{0, 1, 2};
   for (const sylva::LandmarkSlot& s : plain.slots())
     for (int i = 0; i < s.dim; ++i) rows.push_back(compressed.slot(s.id).offset + i);
@@ -100,7 +116,12 @@ double stateDifference(const Filter& compressed, const Filter& plain) {
     x_ordered[j] = x[rows[static_cast<std::size_t>(j)]];
     for (Eigen::Index i = 0; i < n; ++i) P_ordered(i, j) = P(rows[static_cast<std::size_t>(i)], rows[static_cast<std::size_t>(j)]);
   }
-  return std::max(relativeDifference(x_ordered, plain.mean()), relativeDifference(P_ordered, plain.covariance()));
+  return {relativeDifference(x_ordered, plain.mean()), relativeDifference(P_ordered, plain.covariance())};
+}
+
+double stateDifference(const Filter& compressed, const Filter& plain) {
+  const Difference d = stateDifferences(compressed, plain);
+  return std::max(d.mean, d.covariance);
 }
 
 /// Lap 1 whole, from the empty map: every landmark is added during it (the add path).
@@ -157,6 +178,42 @@ void BM_LapOnePlain(benchmark::State& state) { timeLap(state, Lap::kOne, false);
 void BM_LapOneCompressed(benchmark::State& state) { timeLap(state, Lap::kOne, true); }
 void BM_LapTwoPlain(benchmark::State& state) { timeLap(state, Lap::kTwo, false); }
 void BM_LapTwoCompressed(benchmark::State& state) { timeLap(state, Lap::kTwo, true); }
+
+/// BM_WholeRunAgreement (see the file comment): arguments N, the region's radius and its
+/// centre ahead of the robot.
+void BM_WholeRunAgreement(benchmark::State& state) {
+  const int landmarks = static_cast<int>(state.range(0));
+  const sylva_bench::World& w = sylva_bench::worldOf(landmarks);
+  const auto runAll = [&](Filter& ekf) {
+    sylva_peers::PeerScratch scratch;
+    const auto t0 = std::chrono::steady_clock::now();
+    for (const sylva_bench::SylvaStep& step : w.steps)
+      sylva_peers::runPeerStep(ekf, step, w.world.odometryNoise(), w.world.config().dt_s,
+                               sylva_peers::SylvaFusion::kAlaDavison, scratch);
+    ekf.synchronize();  // a no-op for the plain filter
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  };
+  Filter plain = sylva_bench::makeOdometrySlam(w.world);
+  Filter compressed = sylva_bench::makeOdometrySlam(w.world);
+  double plain_s = 0.0, compressed_s = 0.0;
+  for (auto _ : state) {
+    plain = sylva_bench::makeOdometrySlam(w.world);
+    compressed = sylva_bench::makeOdometrySlam(w.world);
+    compressed.setCompression(Filter::withinRadius(static_cast<double>(state.range(1)), static_cast<double>(state.range(2))));
+    plain_s = runAll(plain);
+    compressed_s = runAll(compressed);
+  }
+  const Difference d = stateDifferences(compressed, plain);
+  state.counters["N"] = landmarks;
+  state.counters["steps"] = static_cast<double>(w.steps.size());
+  state.counters["radius_m"] = static_cast<double>(state.range(1));
+  state.counters["ahead_m"] = static_cast<double>(state.range(2));
+  state.counters["mean_difference"] = d.mean;
+  state.counters["covariance_difference"] = d.covariance;
+  state.counters["plain_s"] = plain_s;
+  state.counters["compressed_s"] = compressed_s;
+  state.counters["global_updates"] = static_cast<double>(compressed.globalUpdates());
+}
 
 // ---------------------------------------------------------------- the kernel alone
 
@@ -270,6 +327,7 @@ BENCHMARK(BM_CompressedLocalStep)->Apply(mapSizes)->Unit(benchmark::kMicrosecond
 BENCHMARK(BM_CompressedGlobalUpdate)->Apply(mapSizes)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_LapOnePlain)->Arg(2000)->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK(BM_LapOneCompressed)->Args({2000, 50, 40})->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(BM_WholeRunAgreement)->Args({1000, 50, 40})->Args({2000, 50, 40})->Unit(benchmark::kSecond)->Iterations(1);
 BENCHMARK(BM_LapTwoPlain)->Arg(200)->Arg(2000)->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK(BM_LapTwoCompressed)
     ->Args({200, 30, 0})

@@ -4,8 +4,9 @@
 # BUILD_DIR (default build-bench-baseline), its lap-2 families run REPETITIONS times (default
 # 3) interleaved at random; then, when the Victoria Park data are there (DATA_DIR, default
 # ../shared/data), examples/victoria_park --compare-compressed over the whole run (both
-# variants, plain and compressed, the textbook linearization); then
-# scripts/compressed_report.py. About 10 minutes on 2 cores.
+# variants, plain and compressed, the textbook linearization); the circle world's whole run
+# plain and compressed (WholeRunAgreement, N = 1000 and 2000); then
+# scripts/compressed_report.py. About 15 minutes on 2 cores.
 #
 # Usage: bash scripts/compressed_report.sh [BUILD_DIR]
 set -euo pipefail
@@ -29,6 +30,9 @@ cmake --build "${build_dir}" -j "${JOBS:-2}" --target bench_compressed_ekf victo
 "${build_dir}/bench/bench_compressed_ekf" --benchmark_filter='LapTwo' \
   --benchmark_repetitions="${repetitions}" --benchmark_enable_random_interleaving=true \
   --benchmark_out="${build_dir}/bench_compressed_ekf.json" --benchmark_out_format=json
+echo "==> the whole run, plain and compressed (WholeRunAgreement: the plain run at N = 2000 takes minutes)" >&2
+"${build_dir}/bench/bench_compressed_ekf" --benchmark_filter='WholeRunAgreement' \
+  --benchmark_out="${build_dir}/bench_compressed_whole.json" --benchmark_out_format=json
 vp_args=()
 if [[ -f "${data_dir}/victoria-park/measurements.dat" ]]; then
   echo "==> victoria_park --compare-compressed (the whole run, both variants)" >&2
@@ -39,5 +43,6 @@ else
   echo "compressed_report.sh: no Victoria Park data in ${data_dir}/victoria-park; its section says so" >&2
 fi
 python3 "${root}/scripts/compressed_report.py" "${build_dir}/bench_compressed_ekf.json" "${vp_args[@]}" \
+  --whole-run "${build_dir}/bench_compressed_whole.json" \
   --out "${root}/docs/compressed-ekf.md" --figures "${root}/docs/compressed-ekf.figures.json" \
   --command "bash scripts/compressed_report.sh"
