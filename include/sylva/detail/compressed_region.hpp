@@ -34,22 +34,22 @@
 /// O(n^2 a), once, when the region changes. The result is the plain EKF's, up to round-off.
 ///
 /// Scaled accumulators. The recurrences hold for any starting value phi_0 of phi, with P_AB0
-/// replaced by phi_0^-1 P_AB0: nothing above uses phi = I at the start. That choice matters
-/// for round-off. With phi_0 = I, psi collects H_A^T S^-1 H_A, which grows like 1/sigma^2 in
-/// the directions a precise sensor pins down (psi near 1e6 on the circle world), while the
-/// stored rows V = P_BA0 are small in just those directions: V psi V^T then comes out of
-/// cancellations between terms many orders of magnitude larger than itself, and over a whole
-/// circle-world run at N = 2000 the state drifted from the plain filter's several orders of
-/// magnitude further than round-off moves the plain filter itself. So the first
-/// update of a region (`stageScale`, `commitScale`) restarts the accumulators from
-/// phi_0 = R, a Cholesky factor of P_AA (R R^T = P_AA), and replaces the stored rows by
-/// V' = V R^-T. For a static A, R^T psi R = I - R^-1 P_AA,posterior R^-T lies between 0 and I,
-/// and V' V'^T = P_BA P_AA^-1 P_AB <= P_BB: every accumulator is then on the scale of the
-/// covariance. Any invertible R gives the same estimates, so R is taken from P_AA plus a tiny
-/// multiple of I (a semi-definite P_AA, e.g. a robot whose pose is known exactly, still has a
-/// factor), and from I if even that fails. Until the region's next global update, the stored
-/// rows against A hold V', which the reads of B below correct like V (they only ever see
-/// them through the accumulators).
+/// replaced by phi_0^-1 P_AB0: nothing above uses phi = I at the start. That choice matters for
+/// round-off. With phi_0 = I, psi collects H_A^T S^-1 H_A, which grows like 1/sigma^2 in the
+/// directions a precise sensor pins down, while the stored rows V = P_BA0 are small in just
+/// those directions: V psi V^T then comes out of cancellations between terms many orders of
+/// magnitude larger than itself, and over a whole circle-world run at N = 2000 the state
+/// drifted from the plain filter's several orders of magnitude further than round-off moves the
+/// plain filter itself. So the first update of a region (`stageScale`, `commitScale`) takes
+/// phi_0 = R, a Cholesky factor of P_AA (R R^T = P_AA): it multiplies phi (I, or I with the
+/// region's predictions applied to its robot rows) by R on the right, while psi and theta are
+/// still zero, and replaces the stored rows by V' = V R^-T. For a static A, R^T psi R = I -
+/// R^-1 P_AA,posterior R^-T lies between 0 and I, and V' V'^T = P_BA P_AA^-1 P_AB <= P_BB:
+/// every accumulator is then on the scale of the covariance. Any invertible R gives the same
+/// estimates, so R is taken from P_AA plus a tiny multiple of I (a semi-definite P_AA, e.g. a
+/// robot whose pose is known exactly, still has a factor), and from I if even that fails. Until
+/// the region's next global update, the stored rows against A hold V', which the reads of B
+/// below correct like V (they only ever see them through the accumulators).
 ///
 /// A landmark that enters the state during a region joins A (`extend`): its stored
 /// cross-covariance with B is zero, and its rows of phi, J_new phi_robot, carry the
