@@ -187,7 +187,8 @@ struct Pair {
   }
 };
 
-/// `steps` local steps in the current region: a prediction, an update of 2 to 6 rows, or
+/// `steps` local steps in the current region: a prediction, an update of 1 to 6 rows (up to 4
+/// taken in place, more through the staged products: CompressedRegion::stageUpdate), or
 /// (with `adds`) a new landmark.
 void localSteps(Pair& pair, Random& random, int steps, bool adds = false) {
   for (int s = 0; s < steps; ++s) {
@@ -196,7 +197,7 @@ void localSteps(Pair& pair, Random& random, int steps, bool adds = false) {
       const Eigen::Matrix3d J = Eigen::Matrix3d::Identity() + 0.1 * Eigen::Matrix3d(random.normal(kRobotDim, kRobotDim));
       pair.predict(J, 0.3 * random.normal(kRobotDim, 1), random.spd(kRobotDim, 0.01));
     } else if (kind == 1) {
-      const int m = random.uniform(2, 6);
+      const int m = random.uniform(1, 6);
       pair.update(random.normal(m, pair.region.activeDim()), random.spd(m, 0.05), 3.0 * random.normal(m, 1));
     } else {
       pair.add(random.normal(2, kRobotDim), random.normal(2, 2), random.normal(2, 1), random.spd(2, 0.05));

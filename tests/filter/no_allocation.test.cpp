@@ -163,11 +163,14 @@ TEST_CASE("the compressed EKF's local steps and global update do not allocate in
   detail::CompressedRegion region;
   region.begin(7);
   const Eigen::Matrix3d J = Eigen::Matrix3d::Identity() + 0.01 * Eigen::Matrix3d::Ones();
-  Eigen::MatrixXd H = Eigen::MatrixXd::Zero(4, 7), W = Eigen::MatrixXd::Zero(7, 4);
-  H(0, 0) = H(1, 3) = H(2, 5) = H(3, 6) = 1.0;
+  // Up to 4 rows the accumulators take rank-one updates in place; 6 rows go through the
+  // staged products (CompressedRegion::stageUpdate): both paths are run.
+  Eigen::MatrixXd H = Eigen::MatrixXd::Zero(6, 7), W = Eigen::MatrixXd::Zero(7, 6);
+  H(0, 0) = H(1, 3) = H(2, 5) = H(3, 6) = H(4, 1) = H(5, 2) = 1.0;
   W = 0.1 * H.transpose();
   const Eigen::LLT<Eigen::MatrixXd> S(Eigen::MatrixXd::Identity(4, 4) * 2.0);
-  const Eigen::VectorXd nu = Eigen::VectorXd::Constant(4, 0.05);
+  const Eigen::LLT<Eigen::MatrixXd> S6(Eigen::MatrixXd::Identity(6, 6) * 2.0);
+  const Eigen::VectorXd nu = Eigen::VectorXd::Constant(6, 0.05);
   const Eigen::LLT<Eigen::MatrixXd> S2(Eigen::MatrixXd::Identity(2, 2) * 2.0);
   const auto update = [&](int m, const Eigen::LLT<Eigen::MatrixXd>& llt) {
     auto HphiT = region.hphiTransposed(m);
@@ -180,6 +183,7 @@ TEST_CASE("the compressed EKF's local steps and global update do not allocate in
       region.predictRobot<3>(J);
       update(4, S);
       update(2, S2);
+      update(6, S6);
     }
     region.globalUpdate(P, x);
   };
