@@ -278,9 +278,14 @@ def main():
                   f"fusion through the compressed EKF (final states checked equal) | >= 300 | {spread(whole, x)}; "
                   f"{states} | {len(whole)} | {verdict(min(whole) >= 300 and all(agree))} |")
     else:
+        # Without MRPT's run, what the compressed run's own floor says about the criterion
+        # (compressed-ekf.md, "Where the compressed run's time goes, and its floor").
+        floor, needed = figure("compressed-ekf", "whole_run_floor_s_n2000"), figure("compressed-ekf", "whole_run_needed_peer_s_n2000")
+        bound = (f"; sylva's global updates alone need {floor[0]} s at the GEMM peak, so MRPT's whole run must take "
+                 f"at least {needed[0]} s on that machine ([compressed-ekf.md](compressed-ekf.md))" if floor and needed else "")
         md.append("| whole run, circle world N = 2000, both baseline: MRPT kfEKFAlaDavison / sylva compressed | "
-                  ">= 300 | not in this run (`WHOLE_SIZES=2000 bash scripts/run_peer_benchmarks.sh` times it) | - | "
-                  "**not run** |")
+                  ">= 300 | not in this run (`WHOLE_SIZES=2000 bash scripts/run_peer_benchmarks.sh` times it)"
+                  f"{bound} | - | **not run** |")
     threads = figure("threads", "speedup_2000")
     threads_min = figure("threads", "speedup_2000_min")
     threads_max = figure("threads", "speedup_2000_max")
