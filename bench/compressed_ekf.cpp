@@ -25,13 +25,10 @@
 ///                        the largest entry of the plain filter's), plain_s, compressed_s,
 ///                        global_updates; the compressed run split into local_steps_s and
 ///                        global_steps_s (the steps in which a global update ran, and the
-///                        final synchronize), global_flops (the global updates' dense flops,
-///                        from the sizes before each: b (b + 1) a for the lower triangle of
-///                        (V psi) V^T, 4 b a^2 for V psi and V phi^T), gemm_gflops (the GEMM
-///                        peak, best of 20 products of 512^3, after the runs) and
-///                        global_floor_s, the flops at that peak: the least time any
-///                        implementation of these global updates could take. Its time is the
-///                        two runs together.
+///                        final synchronize), global_flops, gemm_gflops (measured after the
+///                        runs) and global_floor_s, the flops at that peak
+///                        (bench/peers/compressed_whole_run.hpp). Its time is the two runs
+///                        together.
 /// Counters: per_step_us (the iteration's time over its steps), global_updates, active_dim at
 /// the end, and state_difference: after the stretch, the largest difference between the
 /// compressed filter's mean and covariance and the plain filter's, relative to the largest
@@ -63,6 +60,7 @@
 #include <vector>
 
 #include "common/build_context.hpp"
+#include "peers/compressed_whole_run.hpp"
 #include "peers/sylva_peer.hpp"
 #include "scenario/sylva_circle_slam.hpp"
 #include "sylva/detail/compressed_region.hpp"
@@ -187,83 +185,28 @@ void BM_LapOneCompressed(benchmark::State& state) { timeLap(state, Lap::kOne, tr
 void BM_LapTwoPlain(benchmark::State& state) { timeLap(state, Lap::kTwo, false); }
 void BM_LapTwoCompressed(benchmark::State& state) { timeLap(state, Lap::kTwo, true); }
 
-/// The GEMM peak of this build and machine now: the best of a few 512 x 512 x 512 products
-/// (as bench/slam_step.cpp's BM_GemmPeak), in GFLOP/s.
-double gemmPeakGflops() {
-  constexpr int kSize = 512;
-  const Eigen::MatrixXd A = Eigen::MatrixXd::Constant(kSize, kSize, 1e-3);
-  const Eigen::MatrixXd B = Eigen::MatrixXd::Constant(kSize, kSize, 1e-3);
-  Eigen::MatrixXd C = Eigen::MatrixXd::Zero(kSize, kSize);
-  double best = 1e300;
-  for (int k = 0; k < 20; ++k) {
-    const auto t0 = std::chrono::steady_clock::now();
-    C.noalias() += A * B;
-    benchmark::DoNotOptimize(C.data());
-    best = std::min(best, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-  }
-  return 2e-9 * kSize * kSize * kSize / best;
-}
-
 /// BM_WholeRunAgreement (see the file comment): arguments N, the region's radius and its
 /// centre ahead of the robot.
 void BM_WholeRunAgreement(benchmark::State& state) {
   const int landmarks = static_cast<int>(state.range(0));
   const sylva_bench::World& w = sylva_bench::worldOf(landmarks);
-  // The compressed run's split: the steps in which a global update ran (with the final
-  // synchronize) and the others, and the dense flops of its global updates (see the file
-  // comment: the lower triangle of (V psi) V^T, V psi and V phi^T).
-  struct Split {
-    double local_s = 0.0, global_s = 0.0, global_flops = 0.0;
-    long global_updates = 0;
-    long max_per_step = 0;
-    void add(int a, int n, long updates) {
-      const double b = n - a;
-      global_flops += static_cast<double>(updates) * (b * (b + 1.0) * a + 4.0 * b * a * a);
-      global_updates += updates;
-      max_per_step = std::max(max_per_step, updates);
-    }
-  };
-  using Clock = std::chrono::steady_clock;
-  const auto seconds = [](Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); };
-  const auto runAll = [&](Filter& ekf, Split* split) {
-    sylva_peers::PeerScratch scratch;
-    const auto t0 = Clock::now();
-    for (const sylva_bench::SylvaStep& step : w.steps) {
-      const int a = ekf.activeDim(), n = ekf.dim();
-      const long before = ekf.globalUpdates();
-      const auto t_step = Clock::now();
-      sylva_peers::runPeerStep(ekf, step, w.world.odometryNoise(), w.world.config().dt_s,
-                               sylva_peers::SylvaFusion::kAlaDavison, scratch);
-      if (split == nullptr) continue;
-      const double s = seconds(t_step);
-      const long updates = ekf.globalUpdates() - before;
-      (updates > 0 ? split->global_s : split->local_s) += s;
-      if (updates > 0) split->add(a, n, updates);
-    }
-    const int a = ekf.activeDim(), n = ekf.dim();
-    const long before = ekf.globalUpdates();
-    const auto t_sync = Clock::now();
-    ekf.synchronize();  // a no-op for the plain filter
-    if (split != nullptr) {
-      split->global_s += seconds(t_sync);
-      split->add(a, n, ekf.globalUpdates() - before);
-    }
-    return seconds(t0);
+  const auto runAll = [&](Filter& ekf, sylva_peers::WholeRunSplit* split) {
+    return sylva_peers::runCompressedWhole(ekf, w.steps, w.world.odometryNoise(), w.world.config().dt_s, split);
   };
   Filter plain = sylva_bench::makeOdometrySlam(w.world);
   Filter compressed = sylva_bench::makeOdometrySlam(w.world);
   double plain_s = 0.0, compressed_s = 0.0;
-  Split split;
+  sylva_peers::WholeRunSplit split;
   for (auto _ : state) {
     plain = sylva_bench::makeOdometrySlam(w.world);
     compressed = sylva_bench::makeOdometrySlam(w.world);
     compressed.setCompression(Filter::withinRadius(static_cast<double>(state.range(1)), static_cast<double>(state.range(2))));
     plain_s = runAll(plain, nullptr);
-    split = Split{};
+    split = sylva_peers::WholeRunSplit{};
     compressed_s = runAll(compressed, &split);
   }
   const Difference d = stateDifferences(compressed, plain);
-  const double gflops = gemmPeakGflops();
+  const double gflops = sylva_bench::gemmPeakGflops();
   state.counters["N"] = landmarks;
   state.counters["steps"] = static_cast<double>(w.steps.size());
   state.counters["radius_m"] = static_cast<double>(state.range(1));

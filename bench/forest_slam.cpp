@@ -14,6 +14,9 @@
 ///                           MonocularTreeSlam::setProfile: counters predict_us, gating_us,
 ///                           point_updates_us, width_updates_us, reparametrize_us, add_us per
 ///                           frame (and their sum, profiled_us). One iteration is the whole lap.
+///   BM_FrameFusion/<0|1>    the frames of lap 2 of the thesis' pipeline, fused batched (0) or
+///                           sequentially (1), against the frame's machine limit (below); one
+///                           iteration is the whole lap
 ///
 /// Setup (outside the timed loop): the scenario is simulated and both runs are driven to the
 /// end of lap 1. Updates measure z = z_hat +/- a small fixed offset with alternating sign so
@@ -22,11 +25,13 @@
 
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <memory>
 
 #include <sylva/sim/forest_scenario.hpp>
 
+#include "common/machine_limit.hpp"
 #include "monocular_tree_slam.hpp"
 
 namespace {
@@ -144,6 +149,49 @@ void timeLapByPhase(benchmark::State& state, const MonocularTreeSlam& start) {
   state.counters["state_dim"] = start.filter().dim();
 }
 
+/// Lap 2 of the thesis' pipeline from its end-of-lap-1 state, every frame fused as
+/// `state.range(0)` says (0: batched, the default; 1: sequential), against the frame's machine
+/// limit: the larger of the compute floor, the flops of one rank-k update of the lower
+/// triangle per frame (n (n + 1) k, with k the frame's fused rows and n its state dimension),
+/// at the GEMM peak, and the memory bound, one read and write of the lower triangle per
+/// frame; both measured after the lap in the same program (common/machine_limit.hpp).
+void BM_FrameFusion(benchmark::State& state) {
+  const bool sequential = state.range(0) == 1;
+  const Setup& s = setup();
+  const auto& frames = s.scenario.frames;
+  double floor_flops = 0.0, rows = 0.0, dims = 0.0;
+  int frame_count = 0;
+  for (auto _ : state) {
+    state.PauseTiming();
+    MonocularTreeSlam slam = *s.with_width;
+    slam.setFusion(sequential ? sylva::Fusion::kSequential : sylva::Fusion::kBatched);
+    floor_flops = rows = dims = 0.0;
+    frame_count = 0;
+    state.ResumeTiming();
+    for (int k = s.next_frame; k < static_cast<int>(frames.size()) && frames[k].lap == 1; ++k) {
+      const int n = slam.filter().dim();
+      const forest_slam::FrameReport& report = slam.processFrame(frames[k].t_s - frames[k - 1].t_s, s.sightings[k]);
+      floor_flops += static_cast<double>(n) * (n + 1.0) * report.fused_rows;  // a few flops: timed
+      rows += report.fused_rows;
+      dims += n;
+      ++frame_count;
+    }
+  }
+  const double gflops = sylva_bench::gemmPeakGflops();
+  const int mean_dim = frame_count > 0 ? static_cast<int>(dims / frame_count + 0.5) : 0;
+  const double memory_s = sylva_bench::lowerReadWriteSeconds(mean_dim);
+  const double floor_s = frame_count > 0 ? floor_flops / frame_count / (gflops * 1e9) : 0.0;
+  state.counters["frames_per_lap"] = frame_count;
+  state.counters["per_frame_us"] = benchmark::Counter(frame_count / 1e6, benchmark::Counter::kIsIterationInvariantRate |
+                                                                             benchmark::Counter::kInvert);
+  state.counters["rows_per_frame"] = frame_count > 0 ? rows / frame_count : 0.0;
+  state.counters["state_dim"] = mean_dim;
+  state.counters["gemm_gflops"] = gflops;
+  state.counters["compute_floor_us"] = 1e6 * floor_s;
+  state.counters["memory_bound_us"] = 1e6 * memory_s;
+  state.counters["limit_us"] = 1e6 * std::max(floor_s, memory_s);
+}
+
 void BM_FrameSplitWithWidth(benchmark::State& state) { timeLapByPhase(state, *setup().with_width); }
 void BM_FrameSplitWithoutWidth(benchmark::State& state) { timeLapByPhase(state, *setup().without_width); }
 
@@ -151,6 +199,7 @@ BENCHMARK(BM_TreeWidthUpdate)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_PinholePointUpdate)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_FrameWithWidth)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_FrameWithoutWidth)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_FrameFusion)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_FrameSplitWithWidth)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_FrameSplitWithoutWidth)->Unit(benchmark::kMillisecond);
 

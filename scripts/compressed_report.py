@@ -148,6 +148,72 @@ def whole_run_section(path, w, figures):
     w("")
 
 
+TARGET_PEER_RATIO = 300  # issue 19: MRPT kfEKFAlaDavison's whole run / sylva compressed's, N = 2000
+
+
+def peers_whole_section(path, w, figures):
+    """MRPT kfEKFAlaDavison's whole run against sylva's compressed one, from bench_peers_baseline
+    (the same program and run), with the bound that the compressed run's floor puts on the ratio."""
+    w("## Against MRPT's whole run")
+    w("")
+    if not path:
+        w("Not run: it needs MRPT (`PEERS_WHOLE=1 bash scripts/compressed_report.sh`; MRPT's whole run at "
+          "N = 2000 takes over half an hour per repetition).")
+        w("")
+        figures["peers_whole_verdict"] = "not run"
+        return
+    data = json.load(open(path, encoding="utf-8"))
+    runs = defaultdict(dict)  # (family, N) -> {repetition: benchmark}
+    for family, args, b, seconds in single_runs(data):
+        if family in ("mrpt_davison_whole", "sylva_davison_compressed_whole"):
+            # ms_per_run: the timed window of the run (manual time), the same for both sides.
+            runs[(family, args[0])][b.get("repetition_index", 0)] = dict(b, seconds=b["ms_per_run"] / 1e3)
+    sizes = sorted({n for (_, n) in runs})
+    w("`bench_peers_baseline --peers_whole_sizes=N --benchmark_filter=whole` (bench/peers, MRPT from Debian, "
+      "sylva built as above, baseline x86-64 on both sides): every step of both laps from the empty map, once "
+      "through MRPT's kfEKFAlaDavison and once through sylva's replica of its fusion on the compressed EKF "
+      "(region 50 m, centred 40 m ahead), one run per repetition, MRPT's first. Each row pairs the two runs of "
+      "one repetition. *bound* is MRPT's time over the compressed run's floor of the same repetition (see "
+      "above): the most that ratio could be with this region and Eigen's kernels on this machine.")
+    w("")
+    w("| N | repetition | MRPT (s) | sylva compressed (s) | MRPT / sylva | sylva's floor (s) | bound: MRPT / floor | final states equal |")
+    w("|---|---|---|---|---|---|---|---|")
+    for n in sizes:
+        mrpt, sylva = runs.get(("mrpt_davison_whole", n), {}), runs.get(("sylva_davison_compressed_whole", n), {})
+        ratios, bounds, agree = [], [], []
+        for r in sorted(set(mrpt) & set(sylva)):
+            m, c = mrpt[r]["seconds"], sylva[r]["seconds"]
+            floor = sylva[r].get("global_floor_s")
+            ok = sylva[r].get("states_agree", 0.0) == 1.0
+            ratios.append(m / c)
+            agree.append(ok)
+            if floor:
+                bounds.append(m / floor)
+            w(f"| {n} | {r} | {m:.3g} | {c:.3g} | {m / c:.0f} | {floor:.3g} | {m / floor:.0f} | {'yes' if ok else '**no**'} |"
+              if floor else f"| {n} | {r} | {m:.3g} | {c:.3g} | {m / c:.0f} | - | - | {'yes' if ok else '**no**'} |")
+        if n != TARGET_N or not ratios:
+            continue
+        figures["peers_whole_runs"] = str(len(ratios))
+        figures["peers_whole_ratio_median"] = f"{statistics.median(ratios):.0f}"
+        figures["peers_whole_ratio_min"] = f"{min(ratios):.0f}"
+        figures["peers_whole_ratio_max"] = f"{max(ratios):.0f}"
+        if bounds:
+            figures["peers_whole_bound_max"] = f"{max(bounds):.0f}"
+        met = min(ratios) >= TARGET_PEER_RATIO and all(agree)
+        out_of_reach = len(bounds) == len(ratios) and max(bounds) < TARGET_PEER_RATIO
+        figures["peers_whole_verdict"] = ("met" if met else
+                                          "not met; out of reach with this region and Eigen's kernels" if out_of_reach
+                                          else "not met")
+    w("")
+    if "peers_whole_verdict" in figures and figures["peers_whole_verdict"] != "not run":
+        w(f"Criterion (issue 19): at N = {TARGET_N}, MRPT's whole run at least {TARGET_PEER_RATIO}x the compressed "
+          f"run's, with equal final states, in every run: **{figures['peers_whole_verdict']}**. Where every run's "
+          f"bound is under {TARGET_PEER_RATIO}, no kernel work on this region's global updates can meet it here: "
+          "only fewer global-update flops (less overlap between regions) or a faster GEMM (the native build) "
+          "would.")
+        w("")
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__)
     parser.add_argument("json", help="bench_compressed_ekf's JSON (--benchmark_out)")
@@ -156,6 +222,7 @@ def main():
     parser.add_argument("--command", required=True, help="the command that regenerates the page")
     parser.add_argument("--victoria-park", help="victoria_park --compare-compressed --json (absent: no data)")
     parser.add_argument("--whole-run", help="bench_compressed_ekf's WholeRunAgreement JSON (absent: not run)")
+    parser.add_argument("--peers-whole", help="bench_peers_baseline's JSON with the whole runs (absent: not run)")
     args = parser.parse_args()
 
     runs, context = load(args.json)
@@ -229,6 +296,7 @@ def main():
     w("Steps per run: " + ", ".join(sorted({f"{runs[k][0]['steps']} (N = {k[1]})" for k in runs})) + ".")
     w("")
     whole_run_section(args.whole_run, w, figures)
+    peers_whole_section(args.peers_whole, w, figures)
     victoria_park_section(args.victoria_park, w, figures)
     write_page(args.out, lines, args.figures, "compressed-ekf", args.command, figures)
 

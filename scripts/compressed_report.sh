@@ -8,6 +8,11 @@
 # plain and compressed (WholeRunAgreement, N = 1000 and 2000); then
 # scripts/compressed_report.py. About 15 minutes on 2 cores.
 #
+# PEERS_WHOLE=1 also builds bench_peers_baseline (installs libmrpt-dev) and times MRPT's
+# kfEKFAlaDavison against sylva's compressed EKF over the whole run at N = 2000,
+# PEERS_WHOLE_REPETITIONS times (default 3; MRPT takes over half an hour per repetition), for
+# the page's "Against MRPT's whole run". Without it that section says it was not run.
+#
 # Usage: bash scripts/compressed_report.sh [BUILD_DIR]
 set -euo pipefail
 
@@ -23,10 +28,19 @@ source "${root}/scripts/lib/prefer_clang.sh"
 sylva_install_packages build-essential cmake ninja-build libeigen3-dev libbenchmark-dev libcli11-dev \
   nlohmann-json3-dev libboost-math-dev python3
 
+peers_whole="${PEERS_WHOLE:-0}"
+mrpt_flag=()
+targets=(bench_compressed_ekf victoria_park)
+if [[ "${peers_whole}" == 1 ]]; then
+  sylva_install_packages libmrpt-dev
+  mrpt_flag=(-DSYLVA_WITH_MRPT=ON)
+  targets+=(bench_peers_baseline)
+fi
+
 sylva_prefer_clang "${build_dir}"
 cmake -S "${root}" -B "${build_dir}" -G Ninja -DCMAKE_BUILD_TYPE=Release -DSYLVA_NATIVE=OFF \
-  -DSYLVA_BUILD_BENCHMARKS=ON -DSYLVA_BUILD_TESTS=OFF -DSYLVA_BUILD_EXAMPLES=ON
-cmake --build "${build_dir}" -j "${JOBS:-2}" --target bench_compressed_ekf victoria_park
+  -DSYLVA_BUILD_BENCHMARKS=ON -DSYLVA_BUILD_TESTS=OFF -DSYLVA_BUILD_EXAMPLES=ON "${mrpt_flag[@]}"
+cmake --build "${build_dir}" -j "${JOBS:-2}" --target "${targets[@]}"
 "${build_dir}/bench/bench_compressed_ekf" --benchmark_filter='LapTwo' \
   --benchmark_repetitions="${repetitions}" --benchmark_enable_random_interleaving=true \
   --benchmark_out="${build_dir}/bench_compressed_ekf.json" --benchmark_out_format=json
@@ -42,7 +56,15 @@ if [[ -f "${data_dir}/victoria-park/measurements.dat" ]]; then
 else
   echo "compressed_report.sh: no Victoria Park data in ${data_dir}/victoria-park; its section says so" >&2
 fi
-python3 "${root}/scripts/compressed_report.py" "${build_dir}/bench_compressed_ekf.json" "${vp_args[@]}" \
+peers_args=()
+if [[ "${peers_whole}" == 1 ]]; then
+  echo "==> MRPT kfEKFAlaDavison against sylva compressed, the whole run at N = 2000 (over half an hour per repetition)" >&2
+  "${build_dir}/bench/peers/bench_peers_baseline" --peers_sizes=2000 --peers_whole_sizes=2000 --benchmark_filter=whole \
+    --benchmark_repetitions="${PEERS_WHOLE_REPETITIONS:-3}" \
+    --benchmark_out="${build_dir}/bench_peers_whole.json" --benchmark_out_format=json
+  peers_args=(--peers-whole "${build_dir}/bench_peers_whole.json")
+fi
+python3 "${root}/scripts/compressed_report.py" "${build_dir}/bench_compressed_ekf.json" "${vp_args[@]}" "${peers_args[@]}" \
   --whole-run "${build_dir}/bench_compressed_whole.json" \
   --out "${root}/docs/compressed-ekf.md" --figures "${root}/docs/compressed-ekf.figures.json" \
   --command "bash scripts/compressed_report.sh"

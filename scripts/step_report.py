@@ -277,6 +277,16 @@ def main():
         md.append(f"| whole run, circle world N = 2000, both baseline: MRPT kfEKFAlaDavison / sylva's replica of its "
                   f"fusion through the compressed EKF (final states checked equal) | >= 300 | {spread(whole, x)}; "
                   f"{states} | {len(whole)} | {verdict(min(whole) >= 300 and all(agree))} |")
+    elif (figure("compressed-ekf", "peers_whole_verdict") or (None, "not run"))[1] != "not run":
+        # MRPT's whole run timed by scripts/compressed_report.sh (PEERS_WHOLE=1), quoted from its page.
+        fig = lambda key: figure("compressed-ekf", key)[0]  # noqa: E731
+        verdict_text = figure("compressed-ekf", "peers_whole_verdict")
+        md.append("| whole run, circle world N = 2000, both baseline: MRPT kfEKFAlaDavison / sylva's replica of its "
+                  "fusion through the compressed EKF (final states checked equal; [compressed-ekf.md](compressed-ekf.md)) | "
+                  f">= 300 | {fig('peers_whole_ratio_median')} [{fig('peers_whole_ratio_min')}, {fig('peers_whole_ratio_max')}]; "
+                  f"MRPT's time over sylva's global-update floor, at most {fig('peers_whole_bound_max')} | "
+                  f"{fig('peers_whole_runs')} | "
+                  f"{verdict_text[0] if verdict_text[1] == 'met' else '**' + verdict_text[0] + '**'} |")
     else:
         # Without MRPT's run, what the compressed run's own floor says about the criterion
         # (compressed-ekf.md, "Where the compressed run's time goes, and its floor").
@@ -438,6 +448,17 @@ def main():
                 md.append(f"| {label} | {med['state_dim']:.0f} | " + " | ".join(
                     f"{med[p]:.1f} ({100 * med[p] / med['profiled_us']:.0f}%)" for p in phases) + f" | {med['profiled_us']:.0f} |")
             md.append("")
+            # The frame against its own machine limit, batched and sequential (issue 19), quoted
+            # from forest-benchmark.md (bash scripts/run_forest_benchmark.sh).
+            limit = figure("forest-benchmark", "frame_limit_batched")
+            if limit:
+                fig = lambda key: figure("forest-benchmark", key)[0]  # noqa: E731
+                md.append("The thesis' pipeline's frame against its own machine limit ([forest-benchmark.md]"
+                          "(forest-benchmark.md), `BM_FrameFusion`: one rank-k update of the lower triangle per frame "
+                          f"at the GEMM peak, or one pass over it): batched {limit[0]} [{fig('frame_limit_batched_min')}, "
+                          f"{fig('frame_limit_batched_max')}], sequential {fig('frame_limit_sequential')}; sequential / "
+                          f"batched {fig('sequential_over_batched')} (median [range] over {fig('repetitions')} "
+                          "repetitions).\n")
 
     builds = [json.load(open(f, encoding="utf-8")) for f in a.build_times if os.path.exists(f)]
     if builds:

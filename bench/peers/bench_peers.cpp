@@ -52,7 +52,11 @@
 /// The compressed run's final state is compared, by landmark id, with MRPT's final state from
 /// the same program (mean to 1e-9 of its largest coordinate, covariance to 1e-9 of max |P|;
 /// counters max_mean_relative_diff and max_cov_relative_diff; states_agree is 1 within both
-/// tolerances, else 0, and the run keeps its time). Counter ms_per_run.
+/// tolerances, else 0, and the run keeps its time). Counter ms_per_run. The compressed run
+/// ends with its final global update (synchronize()) inside the timing, and also reports
+/// where its time went and the floor of its global updates at the GEMM peak measured after
+/// it (local_steps_s, global_steps_s, global_flops, gemm_gflops, global_floor_s:
+/// compressed_whole_run.hpp).
 ///
 /// Extra flags (before Google Benchmark's own):
 ///   --peers_sizes=50,100,200,500,1000,2000   map sizes N
@@ -78,6 +82,7 @@
 #include <vector>
 
 #include "circle_world.hpp"
+#include "compressed_whole_run.hpp"
 #include "filter_state.hpp"
 #include "mrpt_peer.hpp"
 #include "sylva/filter/compression.hpp"
@@ -361,6 +366,7 @@ void runWhole(benchmark::State& state, WholeRun which, int landmarks) {
   const int total = static_cast<int>(s.world.steps().size());
   double total_s = 0.0;
   FilterState final_state;
+  sylva_peers::WholeRunSplit split;  // the compressed run's (the last iteration's)
   for (auto _ : state) {
     if (which == WholeRun::kMrptDavison) {
       MrptPeer peer(s.world, MrptMethod::kAlaDavison);  // built outside the timed window
@@ -374,13 +380,9 @@ void runWhole(benchmark::State& state, WholeRun which, int landmarks) {
       using Filter = sylva_bench::OdometrySlam;
       Filter ekf = sylva_bench::makeOdometrySlam(s.world);
       ekf.setCompression(Filter::withinRadius(50.0, 40.0));
-      sylva_peers::PeerScratch scratch;
-      const auto t0 = std::chrono::steady_clock::now();
-      for (int k = 0; k < total; ++k)
-        sylva_peers::runPeerStep(ekf, s.steps[static_cast<std::size_t>(k)], s.world.odometryNoise(),
-                                 s.world.config().dt_s, SylvaFusion::kAlaDavison, scratch);
-      (void)ekf.mean();  // a read brings the passive part up to date: part of the run
-      const double dt = seconds(std::chrono::steady_clock::now() - t0);
+      // Every step, then the final global update (synchronize()): all of it timed.
+      split = sylva_peers::WholeRunSplit{};
+      const double dt = sylva_peers::runCompressedWhole(ekf, s.steps, s.world.odometryNoise(), s.world.config().dt_s, &split);
       state.SetIterationTime(dt);
       total_s += dt;
       final_state = sylva_peers::stateOf(ekf);
@@ -392,7 +394,19 @@ void runWhole(benchmark::State& state, WholeRun which, int landmarks) {
   state.counters["ms_per_run"] = iterations > 0 ? 1e3 * total_s / static_cast<double>(iterations) : 0.0;
   if (which == WholeRun::kMrptDavison) {
     s.mrpt_final = std::make_unique<FilterState>(std::move(final_state));
-  } else if (s.mrpt_final) {
+  } else {
+    // Where the compressed run's time went, and the floor of its global updates at the GEMM
+    // peak measured now (compressed_whole_run.hpp): the least sylva's run could take with
+    // Eigen's kernels, so MRPT's time over it bounds the ratio this region can reach.
+    const double gflops = sylva_bench::gemmPeakGflops();
+    state.counters["local_steps_s"] = split.local_s;
+    state.counters["global_steps_s"] = split.global_s;
+    state.counters["global_flops"] = split.global_flops;
+    state.counters["global_updates"] = static_cast<double>(split.global_updates);
+    state.counters["gemm_gflops"] = gflops;
+    state.counters["global_floor_s"] = split.global_flops / (gflops * 1e9);
+  }
+  if (which == WholeRun::kSylvaDavisonCompressed && s.mrpt_final) {
     const auto d = sylva_peers::compareStates(*s.mrpt_final, final_state);
     std::fprintf(stderr, "peers: N = %d, whole run, MRPT kfEKFAlaDavison vs sylva compressed: %s\n", landmarks,
                  d.summary().c_str());

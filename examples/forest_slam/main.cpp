@@ -297,6 +297,13 @@ int main(int argc, char** argv) {
   app.add_option("--svg-prefix", svg_prefix, "write PREFIX_with_width.svg, PREFIX_without_width.svg and PREFIX_width_first_sight.svg (empty: none)")
       ->capture_default_str();
   app.add_option("--forest-svg", forest_svg, "also write the generated forest and path (top view) to this SVG");
+  const std::map<std::string, sylva::Fusion> fusions{{"batched", sylva::Fusion::kBatched},
+                                                     {"sequential", sylva::Fusion::kSequential}};
+  app.add_option("--fusion", slam_options.fusion,
+                 "batched: each model's observations of a frame in one update; sequential: one update per "
+                 "observation, each linearized after the previous one (TreeSlamOptions::fusion)")
+      ->transform(CLI::CheckedTransformer(fusions, CLI::ignore_case))
+      ->default_str("batched");
   const std::map<std::string, sylva::slam::TrunkAssociation> associations{
       {"ids", sylva::slam::TrunkAssociation::kKnownIds}, {"nn", sylva::slam::TrunkAssociation::kNearestNeighbor}};
   app.add_option("--association", slam_options.association,

@@ -168,6 +168,10 @@ struct TreeSlamOptions {
   /// Relative standard deviation of that predicted width beyond the width noise: the error of
   /// the depth ratio d_last / d.
   double width_appearance_tolerance = 0.05;
+  /// How each model's observations of a frame are fused: in one batched update per model
+  /// (one linearization point, one pass over P), or one update per observation, each
+  /// linearized after the previous one (`Fusion`, filter/ekf.hpp).
+  Fusion fusion = Fusion::kBatched;
 };
 
 /// What a simulator knows about one frame, for the diagnostics of `TreeSlamOptions`
@@ -184,6 +188,7 @@ struct FrameTruth {
 /// What one frame did.
 struct FrameReport {
   int fused = 0;      ///< observations fused
+  int fused_rows = 0; ///< their measurement rows (2 for [u, v], 3 for [u, v, w])
   int added = 0;      ///< new inverse-depth landmarks
   int to_xyz = 0;     ///< inverse depth -> XYZ conversions
   int to_tree = 0;    ///< XYZ -> XYZ-R or IDR -> XYZ-R conversions
@@ -250,6 +255,8 @@ class BasicMonocularTreeSlam {
   /// Adds the time of every following frame's phases to `*profile` (nullptr: off, the
   /// default). The profile is the caller's; a copy of this object shares it.
   void setProfile(FrameProfile* profile) { profile_ = profile; }
+  /// Fuses the following frames' observations as `fusion` says (TreeSlamOptions::fusion).
+  void setFusion(Fusion fusion) { options_.fusion = fusion; }
 
  private:
   struct Seen {

@@ -428,8 +428,9 @@ void BasicMonocularTreeSlam<Camera>::fuse(const Model& model, const std::vector<
   detail::PhaseClock clock(profile_ == nullptr ? nullptr
                                        : Model::kDim == 3 ? &profile_->width_updates_s : &profile_->point_updates_s);
   try {
-    ekf_.update(model, batch);
+    ekf_.update(model, batch, options_.fusion);
     report.fused += static_cast<int>(batch.size());
+    report.fused_rows += static_cast<int>(batch.size()) * Model::kDim;
     return;
   } catch (const Error&) {
     // The filter is unchanged; fall back to one observation at a time.
@@ -438,6 +439,7 @@ void BasicMonocularTreeSlam<Camera>::fuse(const Model& model, const std::vector<
     try {
       ekf_.update(model, o.id, o.z, o.noise);
       ++report.fused;
+      report.fused_rows += Model::kDim;
     } catch (const Error&) {
       ++report.rejected;
     }
