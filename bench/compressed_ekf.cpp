@@ -29,6 +29,9 @@
 ///                        runs) and global_floor_s, the flops at that peak
 ///                        (bench/peers/compressed_whole_run.hpp). Its time is the two runs
 ///                        together.
+///   BM_WholeRunRegions   the compressed whole run alone (same fusion, same counters) for
+///                        several regions at N = 2000: how the global updates' flops, and so
+///                        their floor, depend on the region
 /// Counters: per_step_us (the iteration's time over its steps), global_updates, active_dim at
 /// the end, and state_difference: after the stretch, the largest difference between the
 /// compressed filter's mean and covariance and the plain filter's, relative to the largest
@@ -206,7 +209,6 @@ void BM_WholeRunAgreement(benchmark::State& state) {
     compressed_s = runAll(compressed, &split);
   }
   const Difference d = stateDifferences(compressed, plain);
-  const double gflops = sylva_bench::gemmPeakGflops();
   state.counters["N"] = landmarks;
   state.counters["steps"] = static_cast<double>(w.steps.size());
   state.counters["radius_m"] = static_cast<double>(state.range(1));
@@ -215,13 +217,27 @@ void BM_WholeRunAgreement(benchmark::State& state) {
   state.counters["covariance_difference"] = d.covariance;
   state.counters["plain_s"] = plain_s;
   state.counters["compressed_s"] = compressed_s;
-  state.counters["global_updates"] = static_cast<double>(compressed.globalUpdates());
-  state.counters["local_steps_s"] = split.local_s;
-  state.counters["global_steps_s"] = split.global_s;
-  state.counters["global_flops"] = split.global_flops;
-  state.counters["max_global_updates_per_step"] = static_cast<double>(split.max_per_step);
-  state.counters["gemm_gflops"] = gflops;
-  state.counters["global_floor_s"] = split.global_flops / (gflops * 1e9);
+  sylva_peers::setSplitCounters(state, split);
+}
+
+/// BM_WholeRunRegions (see the file comment): the compressed whole run alone, arguments N,
+/// the region's radius and its centre ahead of the robot.
+void BM_WholeRunRegions(benchmark::State& state) {
+  const int landmarks = static_cast<int>(state.range(0));
+  const sylva_bench::World& w = sylva_bench::worldOf(landmarks);
+  sylva_peers::WholeRunSplit split;
+  double seconds = 0.0;
+  for (auto _ : state) {
+    Filter ekf = sylva_bench::makeOdometrySlam(w.world);
+    ekf.setCompression(Filter::withinRadius(static_cast<double>(state.range(1)), static_cast<double>(state.range(2))));
+    split = sylva_peers::WholeRunSplit{};
+    seconds = sylva_peers::runCompressedWhole(ekf, w.steps, w.world.odometryNoise(), w.world.config().dt_s, &split);
+  }
+  state.counters["N"] = landmarks;
+  state.counters["radius_m"] = static_cast<double>(state.range(1));
+  state.counters["ahead_m"] = static_cast<double>(state.range(2));
+  state.counters["compressed_s"] = seconds;
+  sylva_peers::setSplitCounters(state, split);
 }
 
 // ---------------------------------------------------------------- the kernel alone
@@ -337,6 +353,18 @@ BENCHMARK(BM_CompressedGlobalUpdate)->Apply(mapSizes)->Unit(benchmark::kMicrosec
 BENCHMARK(BM_LapOnePlain)->Arg(2000)->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK(BM_LapOneCompressed)->Args({2000, 50, 40})->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK(BM_WholeRunAgreement)->Args({1000, 50, 40})->Args({2000, 50, 40})->Unit(benchmark::kSecond)->Iterations(1);
+// Regions whose centre lies 10 m short of their edge (the sensor's range) ahead of the robot:
+// a region entered there holds what the robot sees, and is left after r + ahead metres.
+BENCHMARK(BM_WholeRunRegions)
+    ->Args({2000, 30, 20})
+    ->Args({2000, 40, 30})
+    ->Args({2000, 50, 40})
+    ->Args({2000, 60, 50})
+    ->Args({2000, 80, 70})
+    ->Args({2000, 100, 90})
+    ->Args({2000, 120, 110})
+    ->Unit(benchmark::kSecond)
+    ->Iterations(1);
 BENCHMARK(BM_LapTwoPlain)->Arg(200)->Arg(2000)->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK(BM_LapTwoCompressed)
     ->Args({200, 30, 0})

@@ -5,7 +5,8 @@
 # 3) interleaved at random; then, when the Victoria Park data are there (DATA_DIR, default
 # ../shared/data), examples/victoria_park --compare-compressed over the whole run (both
 # variants, plain and compressed, the textbook linearization); the circle world's whole run
-# plain and compressed (WholeRunAgreement, N = 1000 and 2000); then
+# plain and compressed (WholeRunAgreement, N = 1000 and 2000), and compressed alone for seven
+# regions (WholeRunRegions, N = 2000); then
 # scripts/compressed_report.py. About 15 minutes on 2 cores.
 #
 # PEERS_WHOLE=1 also builds bench_peers_baseline (installs libmrpt-dev) and times MRPT's
@@ -44,8 +45,8 @@ cmake --build "${build_dir}" -j "${JOBS:-2}" --target "${targets[@]}"
 "${build_dir}/bench/bench_compressed_ekf" --benchmark_filter='LapTwo' \
   --benchmark_repetitions="${repetitions}" --benchmark_enable_random_interleaving=true \
   --benchmark_out="${build_dir}/bench_compressed_ekf.json" --benchmark_out_format=json
-echo "==> the whole run, plain and compressed (WholeRunAgreement: the plain run at N = 2000 takes minutes)" >&2
-"${build_dir}/bench/bench_compressed_ekf" --benchmark_filter='WholeRunAgreement' \
+echo "==> the whole run, plain and compressed, and compressed for several regions (WholeRun*: the plain run at N = 2000 takes minutes)" >&2
+"${build_dir}/bench/bench_compressed_ekf" --benchmark_filter='WholeRun' \
   --benchmark_out="${build_dir}/bench_compressed_whole.json" --benchmark_out_format=json
 vp_args=()
 if [[ -f "${data_dir}/victoria-park/measurements.dat" ]]; then

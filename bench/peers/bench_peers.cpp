@@ -398,13 +398,7 @@ void runWhole(benchmark::State& state, WholeRun which, int landmarks) {
     // Where the compressed run's time went, and the floor of its global updates at the GEMM
     // peak measured now (compressed_whole_run.hpp): the least sylva's run could take with
     // Eigen's kernels, so MRPT's time over it bounds the ratio this region can reach.
-    const double gflops = sylva_bench::gemmPeakGflops();
-    state.counters["local_steps_s"] = split.local_s;
-    state.counters["global_steps_s"] = split.global_s;
-    state.counters["global_flops"] = split.global_flops;
-    state.counters["global_updates"] = static_cast<double>(split.global_updates);
-    state.counters["gemm_gflops"] = gflops;
-    state.counters["global_floor_s"] = split.global_flops / (gflops * 1e9);
+    sylva_peers::setSplitCounters(state, split);
   }
   if (which == WholeRun::kSylvaDavisonCompressed && s.mrpt_final) {
     const auto d = sylva_peers::compareStates(*s.mrpt_final, final_state);

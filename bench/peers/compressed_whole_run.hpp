@@ -12,6 +12,8 @@
 /// in which it runs. Those flops at the GEMM peak (common/machine_limit.hpp) are the least time the
 /// run's global updates can take with Eigen's kernels on this build and machine.
 
+#include <benchmark/benchmark.h>
+
 #include <algorithm>
 #include <chrono>
 #include <vector>
@@ -67,6 +69,20 @@ inline double runCompressedWhole(OdometrySlam& ekf, const std::vector<sylva_benc
     split->addGlobalUpdates(a, n, ekf.globalUpdates() - before);
   }
   return since(t0);
+}
+
+/// The split's counters on a benchmark, with the GEMM peak measured now and the floor:
+/// local_steps_s, global_steps_s, global_flops, global_updates, max_global_updates_per_step,
+/// gemm_gflops, global_floor_s (the flops at that peak).
+inline void setSplitCounters(benchmark::State& state, const WholeRunSplit& split) {
+  const double gflops = sylva_bench::gemmPeakGflops();
+  state.counters["local_steps_s"] = split.local_s;
+  state.counters["global_steps_s"] = split.global_s;
+  state.counters["global_flops"] = split.global_flops;
+  state.counters["global_updates"] = static_cast<double>(split.global_updates);
+  state.counters["max_global_updates_per_step"] = static_cast<double>(split.max_per_step);
+  state.counters["gemm_gflops"] = gflops;
+  state.counters["global_floor_s"] = split.global_flops / (gflops * 1e9);
 }
 
 }  // namespace sylva_peers
