@@ -557,7 +557,7 @@ def run_sources(names, bin_dir, quick, out_dir):
         target_root = out_dir if quick else ROOT
         img = os.path.join(target_root, "docs", "images")
         os.makedirs(img, exist_ok=True)
-        outputs, commands, skipped = {}, [], False
+        outputs, commands, kept_commands, skipped = {}, [], [], False
         for label, template in (src["quick"] if quick else src["runs"]).items():
             optional = label.endswith("?")  # needs data that may be absent: skipped then
             command = template.format(bin=bin_dir, img=img)
@@ -567,18 +567,24 @@ def run_sources(names, bin_dir, quick, out_dir):
             if proc.returncode == 77 and optional:
                 print("    skipped (exit 77: what it needs is absent: real data, or a benchmark binary)", file=sys.stderr)
                 skipped = True
+                kept_commands.append(shown)  # its figures, if any, are kept from the committed file
                 continue
             if proc.returncode != 0:
                 sys.exit(f"docs_figures: '{command}' failed with exit code {proc.returncode}")
             outputs[label.rstrip("?")] = json.loads(proc.stdout)
             commands.append(shown)
-        figures = src["figures"](outputs)
         path = os.path.join(target_root, src["file"])
         committed_path = os.path.join(ROOT, src["file"])
+        if skipped and not quick and not commands and os.path.exists(committed_path):
+            # Nothing ran: the committed figures file, command included, stays as it is.
+            print(f"    every run of '{name}' was skipped: {src['file']} is left as it is", file=sys.stderr)
+            continue
+        figures = src["figures"](outputs)
         if skipped and not quick and os.path.exists(committed_path):
             # A run skipped for want of its data keeps the figures of the last run that had it.
             for key, text in json.load(open(committed_path))["figures"].items():
                 figures.setdefault(key, text)
+            commands += kept_commands
         data = {"source": name,
                 "command": src.get("command") or "bash scripts/regenerate_docs.sh (" + "; ".join(commands) + ")",
                 "figures": figures}

@@ -420,32 +420,27 @@ void printTable(const json& all) {
 
 int main(int argc, char** argv) {
   CLI::App app{"consistency: Monte Carlo NEES and NIS of sylva's filters on named suites"};
+  app.option_defaults()->always_capture_default();  // every option shows its default in --help
   std::string suites = "planar,monocular,monocular-forests";
   Settings settings;
   bool json_output = false;
   app.add_option("--suite", suites,
                  "comma-separated: planar, monocular, monocular-forests, monocular-factors, monocular-tuning, "
-                 "monocular-motion, monocular-gauge, monocular-manifold")
-      ->capture_default_str();
+                 "monocular-motion, monocular-gauge, monocular-manifold");
   app.add_option("--runs", settings.runs, "runs per ensemble (planar) or noise draws (monocular)")
-      ->capture_default_str()
       ->check(CLI::Range(2, 100000));
-  app.add_option("--ensembles", settings.ensembles, "planar: ensembles, seeds 1..N")->capture_default_str()->check(CLI::Range(1, 1000));
-  app.add_option("--forests", settings.forests, "monocular-forests: forests, seeds 1..N")->capture_default_str()->check(CLI::Range(2, 1000));
+  app.add_option("--ensembles", settings.ensembles, "planar: ensembles, seeds 1..N")->check(CLI::Range(1, 1000));
+  app.add_option("--forests", settings.forests, "monocular-forests: forests, seeds 1..N")->check(CLI::Range(2, 1000));
   app.add_option("--threads", settings.threads, "worker threads (results do not depend on it)")
-      ->capture_default_str()
       ->check(CLI::Range(1, 256));
   app.add_flag("--json", json_output, "print one JSON object {suite: {mode: {...}}}");
   double raised_accel = 1.0;
   app.add_option("--raised-accel", raised_accel, "monocular-factors: the raised linear acceleration sigma (m/s^2)")
-      ->capture_default_str()
       ->check(CLI::PositiveNumber);
   std::vector<double> tuning_accels{0.3, 0.5, 0.75, 1.0, 1.5, 2.0};
-  app.add_option("--tuning-accels", tuning_accels, "monocular-tuning: the linear acceleration sigmas (m/s^2)")
-      ->capture_default_str();
+  app.add_option("--tuning-accels", tuning_accels, "monocular-tuning: the linear acceleration sigmas (m/s^2)");
   std::vector<double> motion_accels{0.1, 0.3, 1.0};
-  app.add_option("--motion-accels", motion_accels, "monocular-motion: the linear acceleration sigmas (m/s^2)")
-      ->capture_default_str();
+  app.add_option("--motion-accels", motion_accels, "monocular-motion: the linear acceleration sigmas (m/s^2)");
   bool quiet = false;
   app.add_flag("--quiet", quiet, "no progress on stderr");
   CLI11_PARSE(app, argc, argv);

@@ -217,6 +217,7 @@ int runOnRecording(const forest_slam::Recording& recording, const TreeSlamOption
 
 int main(int argc, char** argv) {
   CLI::App app{"forest_slam: monocular EKF-SLAM in a simulated forest, with and without the tree-width sensor"};
+  app.option_defaults()->always_capture_default();  // every option shows its default in --help
   std::uint64_t seed = forest_slam::kDefaultForestSeed;
   sylva::sim::ForestScenarioOptions scenario_options;
   TreeSlamOptions slam_options;
@@ -229,36 +230,30 @@ int main(int argc, char** argv) {
   int max_frames = 0;
   std::string svg_prefix = "forest_slam";
   std::string forest_svg;
-  app.add_option("--seed", seed, "seed of the forest and of the measurement noise (default: the representative forest, see docs/forest-slam-results.md)")->capture_default_str();
+  app.add_option("--seed", seed, "seed of the forest and of the measurement noise (default: the representative forest, see docs/forest-slam-results.md)");
   app.add_option("--pixel-noise", scenario_options.observer.sigma_px, "sigma of u and v (pixels) in the simulation (the filter assumes --pixel-noise-scale times it)")
-      ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
   app.add_option("--width-noise", scenario_options.observer.sigma_width_px, "sigma of the width w (pixels) in the simulation (the filter assumes --width-noise-scale times it)")
-      ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
   app.add_option("--density", scenario_options.forest.presence_probability, "probability that a grid cell (--grid) holds a tree")
-      ->capture_default_str()
       ->check(CLI::Range(0.0, 1.0));
   app.add_flag("--no-occlusion", no_occlusion, "also measure trees hidden behind nearer trunks");
-  app.add_option("--laps", scenario_options.trajectory.laps, "laps of the loop (the thesis drives two)")->capture_default_str()->check(CLI::PositiveNumber);
-  app.add_option("--frame-rate", frame_rate_hz, "camera frames per second")->capture_default_str()->check(CLI::PositiveNumber);
+  app.add_option("--laps", scenario_options.trajectory.laps, "laps of the loop (the thesis drives two)")->check(CLI::PositiveNumber);
+  app.add_option("--frame-rate", frame_rate_hz, "camera frames per second")->check(CLI::PositiveNumber);
   app.add_option("--speed", scenario_options.trajectory.speed_mps, "camera speed along the loop (m/s)")
-      ->capture_default_str()
       ->check(CLI::PositiveNumber);
-  app.add_option("--fx", scenario_options.camera.fx, "focal length u (pixels)")->capture_default_str();
-  app.add_option("--fy", scenario_options.camera.fy, "focal length v (pixels)")->capture_default_str();
-  app.add_option("--cx", scenario_options.camera.cx, "principal point u (pixels)")->capture_default_str();
-  app.add_option("--cy", scenario_options.camera.cy, "principal point v (pixels)")->capture_default_str();
-  app.add_option("--image-width", scenario_options.camera.width, "image width (pixels)")->capture_default_str();
-  app.add_option("--image-height", scenario_options.camera.height, "image height (pixels)")->capture_default_str();
+  app.add_option("--fx", scenario_options.camera.fx, "focal length u (pixels)");
+  app.add_option("--fy", scenario_options.camera.fy, "focal length v (pixels)");
+  app.add_option("--cx", scenario_options.camera.cx, "principal point u (pixels)");
+  app.add_option("--cy", scenario_options.camera.cy, "principal point v (pixels)");
+  app.add_option("--image-width", scenario_options.camera.width, "image width (pixels)");
+  app.add_option("--image-height", scenario_options.camera.height, "image height (pixels)");
   app.add_option("--pixel-noise-scale", pixel_noise_scale,
                  "the filter assumes this multiple of the simulated sigma on u and v (the thesis' gain, Sec. 4.2)")
-      ->capture_default_str()
       ->check(CLI::PositiveNumber);
   app.add_option("--width-noise-scale", width_noise_scale, "the filter assumes this multiple of the simulated sigma on w")
-      ->capture_default_str()
       ->check(CLI::PositiveNumber);
-  app.add_option("--accel-noise", slam_options.linear_accel_sigma, "filter's linear acceleration sigma (m/s^2)")->capture_default_str();
+  app.add_option("--accel-noise", slam_options.linear_accel_sigma, "filter's linear acceleration sigma (m/s^2)");
   const std::map<std::string, sylva::ConstantVelocity3D::VelocityFrame> velocity_frames{
       {"world", sylva::ConstantVelocity3D::VelocityFrame::kWorld},
       {"camera", sylva::ConstantVelocity3D::VelocityFrame::kCamera}};
@@ -283,19 +278,14 @@ int main(int argc, char** argv) {
   app.add_flag("--conversion-given-camera", slam_options.conversion_given_camera,
                "the life cycle judges each landmark's uncertainty given the camera's state (for a consistent "
                "filter, whose map keeps its position and scale uncertain)");
-  app.add_option("--angular-accel-noise", slam_options.angular_accel_sigma, "filter's angular acceleration sigma (rad/s^2)")
-      ->capture_default_str();
-  app.add_option("--linearity-threshold", slam_options.linearity_threshold, "inverse depth -> XYZ below this linearity index")
-      ->capture_default_str();
-  app.add_option("--xyzr-sigma", slam_options.tree_position_sigma_m, "XYZ -> XYZ-R once the position sigma is below this (m)")
-      ->capture_default_str();
-  app.add_option("--gate", slam_options.gate_probability, "chi-square gate probability on each observation's NIS (0: off)")
-      ->capture_default_str();
-  app.add_option("--grid", scenario_options.forest.grid_spacing_m, "spacing of the forest's grid (m)")->capture_default_str();
-  app.add_option("--frames", max_frames, "stop after this many frames (0: all)")->capture_default_str();
+  app.add_option("--angular-accel-noise", slam_options.angular_accel_sigma, "filter's angular acceleration sigma (rad/s^2)");
+  app.add_option("--linearity-threshold", slam_options.linearity_threshold, "inverse depth -> XYZ below this linearity index");
+  app.add_option("--xyzr-sigma", slam_options.tree_position_sigma_m, "XYZ -> XYZ-R once the position sigma is below this (m)");
+  app.add_option("--gate", slam_options.gate_probability, "chi-square gate probability on each observation's NIS (0: off)");
+  app.add_option("--grid", scenario_options.forest.grid_spacing_m, "spacing of the forest's grid (m)");
+  app.add_option("--frames", max_frames, "stop after this many frames (0: all)");
   app.add_flag("--json", json, "print the results as JSON");
-  app.add_option("--svg-prefix", svg_prefix, "write PREFIX_with_width.svg, PREFIX_without_width.svg and PREFIX_width_first_sight.svg (empty: none)")
-      ->capture_default_str();
+  app.add_option("--svg-prefix", svg_prefix, "write PREFIX_with_width.svg, PREFIX_without_width.svg and PREFIX_width_first_sight.svg (empty: none)");
   app.add_option("--forest-svg", forest_svg, "also write the generated forest and path (top view) to this SVG");
   const std::map<std::string, sylva::Fusion> fusions{{"batched", sylva::Fusion::kBatched},
                                                      {"sequential", sylva::Fusion::kSequential}};
@@ -313,12 +303,10 @@ int main(int argc, char** argv) {
       ->default_str("ids");
   app.add_option("--association-gate", slam_options.association_gate_probability,
                  "--association nn: chi-square probability of the gate of a pairing")
-      ->capture_default_str()
       ->check(CLI::Range(0.5, 0.9999999));
   app.add_option("--new-tree-gate", slam_options.new_tree_probability,
                  "--association nn: a sighting that pairs with nothing starts a tree only when its NIS to every tree "
                  "exceeds this chi-square quantile")
-      ->capture_default_str()
       ->check(CLI::Range(0.5, 0.9999999));
   bool no_width_appearance = false;
   app.add_flag("--no-width-appearance", no_width_appearance,
@@ -327,7 +315,6 @@ int main(int argc, char** argv) {
   app.add_option("--width-appearance-tolerance", slam_options.width_appearance_tolerance,
                  "--association nn: relative standard deviation of a point landmark's predicted width beyond the "
                  "width noise")
-      ->capture_default_str()
       ->check(CLI::Range(0.0, 10.0));
   std::string csv_prefix, write_recording, detections_file, camera_file, initial_state_file;
   app.add_option("--csv-prefix", csv_prefix,

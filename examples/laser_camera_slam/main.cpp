@@ -39,16 +39,13 @@
 #include "../range_bearing_slam/svg_map.hpp"
 #include "run.hpp"
 #include "sigma_plot.hpp"
+#include "../common/text.hpp"
 
 namespace {
 
-using namespace laser_camera_slam;
+using sylva_examples::fixed;
 
-std::string fixed(double v, int digits) {
-  std::ostringstream os;
-  os << std::fixed << std::setprecision(digits) << v;
-  return os.str();
-}
+using namespace laser_camera_slam;
 
 const Variant kVariants[] = {Variant::kLaserCorners, Variant::kLaserCamera, Variant::kFused};
 
@@ -229,17 +226,16 @@ int main(int argc, char** argv) {
   std::string svg_prefix = "laser_camera_";
   CLI::App app{"2D EKF-SLAM in a simulated corridor: laser corners vs laser-camera landmarks (multisensor thesis "
                "Sec. 3.3-3.5) vs both, on the same run."};
-  app.add_option("--seed", o.seed, "seed of the noise (the world is fixed)")->capture_default_str();
+  app.option_defaults()->always_capture_default();  // every option shows its default in --help
+  app.add_option("--seed", o.seed, "seed of the noise (the world is fixed)");
   app.add_option("--seeds", seeds, "run seeds seed .. seed + N - 1 and report each")
-      ->check(CLI::Range(1, 10000))
-      ->capture_default_str();
-  app.add_option("--laps", o.laps, "laps of the 40 m loop")->check(CLI::Range(0.05, 100.0))->capture_default_str();
+      ->check(CLI::Range(1, 10000));
+  app.add_option("--laps", o.laps, "laps of the 40 m loop")->check(CLI::Range(0.05, 100.0));
   app.add_flag("--no-calibration", no_calibration, "use the camera bearings without the calibration curve");
   app.add_flag("--reject-jumps", reject_jumps,
                "reject lines at a range jump instead of ranging them on the nearer surface");
   app.add_flag("--json", json, "print one JSON object instead of text");
-  app.add_option("--svg-prefix", svg_prefix, "write <prefix>map.svg and <prefix>sigma.svg (\"\": none)")
-      ->capture_default_str();
+  app.add_option("--svg-prefix", svg_prefix, "write <prefix>map.svg and <prefix>sigma.svg (\"\": none)");
   CLI11_PARSE(app, argc, argv);
   o.calibrate = !no_calibration;
   o.near_side_at_jumps = !reject_jumps;

@@ -49,6 +49,7 @@
 #include <sylva/sim/laser_scanner_2d.hpp>
 
 #include "../common/cli_checks.hpp"
+#include "../common/text.hpp"
 #include "cases.hpp"
 #include "evaluation.hpp"
 #include "figures.hpp"
@@ -61,6 +62,8 @@
 #endif
 
 namespace {
+
+using sylva_examples::fixed;
 
 using sylva::laser::Detection;
 using sylva::laser::DetectorOptions;
@@ -106,12 +109,6 @@ struct Options {
   int real_step = 2;
   int real_max_scans = 0;
 };
-
-std::string fixed(double v, int digits) {
-  std::ostringstream os;
-  os << std::fixed << std::setprecision(digits) << v;
-  return os.str();
-}
 
 sylva::sim::LaserScanner2DOptions scannerOptions(const Options& o) {
   sylva::sim::LaserScanner2DOptions s;
@@ -890,41 +887,41 @@ int main(int argc, char** argv) {
       "Laser moving-object detection of Amarasinghe 2008, chapter 4 (closest points, Algorithms 2-4, Join, convex "
       "hull and bounding box, eq. 4.1-4.5) on simulated scans, the five cases of Sec. 4.3.4, a static check, and "
       "2D EKF-SLAM with and without removing detected moving objects. --real runs it on the leg_tracker recording."};
+  app.option_defaults()->always_capture_default();  // every option shows its default in --help
   app.footer(
       "Same flags, same output, bit for bit. Pictures: <prefix>_scene.svg, _cases.svg, _slam.svg (or _real.svg\n"
       "with --real); --svg-prefix \"\" writes none. With --real and no data at --data, the program says where to get\n"
       "them and exits with status 77 (ctest reports the smoke test as skipped).");
-  app.add_option("--seed", o.seed, "seed of the scenes and the noise")->capture_default_str();
+  app.add_option("--seed", o.seed, "seed of the scenes and the noise");
   app.add_flag("--json", o.json, "print one JSON object instead of text");
-  app.add_option("--svg-prefix", o.svg_prefix, "path prefix of the SVG pictures (\"\" for none)")->capture_default_str();
-  app.add_option("--scans", o.scans, "scans of the default scene")->check(CLI::Range(2, 100000))->capture_default_str();
-  app.add_option("--fov", o.fov_deg, "scanner field of view (deg)")->check(CLI::Range(1.0, 360.0))->capture_default_str();
-  app.add_option("--resolution", o.resolution_deg, "angle between beams (deg)")->check(positive(false))->capture_default_str();
-  app.add_option("--max-range", o.max_range_m, "scanner maximum range (m)")->check(positive(false))->capture_default_str();
-  app.add_option("--sigma-range", o.sigma_range_m, "range noise (m)")->check(positive(true))->capture_default_str();
-  app.add_option("--match-k", o.match_k, "k of eq. 4.4 (closest points)")->check(positive(true))->capture_default_str();
-  app.add_option("--match-floor", o.match_floor_m, "floor of the closest-point threshold (m)")->check(positive(true))->capture_default_str();
-  app.add_option("--segment-k", o.segment_k, "k of the segmentation and Join threshold")->check(positive(true))->capture_default_str();
-  app.add_option("--segment-floor", o.segment_floor_m, "floor of the segmentation threshold (m)")->check(positive(true))->capture_default_str();
-  app.add_option("--min-points", o.min_points, "minimum readings of a detected object (Sec. 4.4.1)")->check(CLI::Range(1, 10000))->capture_default_str();
-  app.add_option("--min-seed", o.min_seed, "minimum readings of an M_C^s segment before the joins")->check(CLI::Range(1, 10000))->capture_default_str();
-  app.add_option("--replace-max-o", o.replace_max_o, "Algorithm 4 only with at most this many O_C^s segments (0: never)")->check(CLI::Range(0, 100000))->capture_default_str();
+  app.add_option("--svg-prefix", o.svg_prefix, "path prefix of the SVG pictures (\"\" for none)");
+  app.add_option("--scans", o.scans, "scans of the default scene")->check(CLI::Range(2, 100000));
+  app.add_option("--fov", o.fov_deg, "scanner field of view (deg)")->check(CLI::Range(1.0, 360.0));
+  app.add_option("--resolution", o.resolution_deg, "angle between beams (deg)")->check(positive(false));
+  app.add_option("--max-range", o.max_range_m, "scanner maximum range (m)")->check(positive(false));
+  app.add_option("--sigma-range", o.sigma_range_m, "range noise (m)")->check(positive(true));
+  app.add_option("--match-k", o.match_k, "k of eq. 4.4 (closest points)")->check(positive(true));
+  app.add_option("--match-floor", o.match_floor_m, "floor of the closest-point threshold (m)")->check(positive(true));
+  app.add_option("--segment-k", o.segment_k, "k of the segmentation and Join threshold")->check(positive(true));
+  app.add_option("--segment-floor", o.segment_floor_m, "floor of the segmentation threshold (m)")->check(positive(true));
+  app.add_option("--min-points", o.min_points, "minimum readings of a detected object (Sec. 4.4.1)")->check(CLI::Range(1, 10000));
+  app.add_option("--min-seed", o.min_seed, "minimum readings of an M_C^s segment before the joins")->check(CLI::Range(1, 10000));
+  app.add_option("--replace-max-o", o.replace_max_o, "Algorithm 4 only with at most this many O_C^s segments (0: never)")->check(CLI::Range(0, 100000));
   app.add_flag("--no-free-space", o.no_free_space, "the thesis' Algorithm 2 without the free-space extension");
   app.add_option("--free-space-fraction", o.free_space_fraction,
                  "trust 'no return' as free space only for readings within this share of the maximum range")
-      ->check(CLI::Range(0.01, 1.0))
-      ->capture_default_str();
-  app.add_option("--slam-seeds", o.slam_seeds, "worlds of the SLAM comparison")->check(CLI::Range(1, 100000))->capture_default_str();
-  app.add_option("--slam-people", o.slam_people, "walking people in the SLAM hall")->check(CLI::Range(0, 1000))->capture_default_str();
-  app.add_option("--slam-poles", o.slam_poles, "poles (landmarks) in the SLAM hall")->check(CLI::Range(1, 1000))->capture_default_str();
-  app.add_option("--slam-laps", o.slam_laps, "laps of the SLAM loop")->check(CLI::Range(0.05, 100.0))->capture_default_str();
-  app.add_option("--memory", o.memory_s, "third SLAM variant: also drop features near objects detected in the last S seconds")->check(positive(false))->capture_default_str();
+      ->check(CLI::Range(0.01, 1.0));
+  app.add_option("--slam-seeds", o.slam_seeds, "worlds of the SLAM comparison")->check(CLI::Range(1, 100000));
+  app.add_option("--slam-people", o.slam_people, "walking people in the SLAM hall")->check(CLI::Range(0, 1000));
+  app.add_option("--slam-poles", o.slam_poles, "poles (landmarks) in the SLAM hall")->check(CLI::Range(1, 1000));
+  app.add_option("--slam-laps", o.slam_laps, "laps of the SLAM loop")->check(CLI::Range(0.05, 100.0));
+  app.add_option("--memory", o.memory_s, "third SLAM variant: also drop features near objects detected in the last S seconds")->check(positive(false));
   app.add_flag("--no-slam", o.no_slam, "skip the SLAM comparison");
   app.add_flag("--slam-oracle", o.slam_oracle, "diagnostic: a fourth SLAM variant that drops exactly the leg features (truth)");
   app.add_flag("--real", o.real, "run on the leg_tracker recording instead of the simulation");
-  app.add_option("--data", o.data, "folder of the leg_tracker recording")->capture_default_str();
-  app.add_option("--real-step", o.real_step, "compare each real scan with the one this many scans earlier")->check(CLI::Range(1, 1000))->capture_default_str();
-  app.add_option("--real-max-scans", o.real_max_scans, "use only the first N real scans (0: all)")->check(CLI::Range(0, 100000000))->capture_default_str();
+  app.add_option("--data", o.data, "folder of the leg_tracker recording");
+  app.add_option("--real-step", o.real_step, "compare each real scan with the one this many scans earlier")->check(CLI::Range(1, 1000));
+  app.add_option("--real-max-scans", o.real_max_scans, "use only the first N real scans (0: all)")->check(CLI::Range(0, 100000000));
   CLI11_PARSE(app, argc, argv);
 
   try {

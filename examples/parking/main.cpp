@@ -359,6 +359,7 @@ int main(int argc, char** argv) {
       "Vision-based hybrid parking controller (Amarasinghe 2008, Ch. 5) on a simulated "
       "unicycle robot with a camera; prints the FSM trace, cycles, parking time and final "
       "pose error, and writes SVGs of the path and of the feature positions."};
+  app.option_defaults()->always_capture_default();  // every option shows its default in --help
   app.footer(
       "World: station features at x = -d, 0, d on the line y = 0, seen from y < 0; the goal is\n"
       "the pose from which the camera sees the reference positions exactly. Defaults follow\n"
@@ -369,51 +370,27 @@ int main(int argc, char** argv) {
   const auto ok = finite(false);
   const auto pos = finite(true);
   const auto nonneg = finite(true, true);
-  app.add_option("--seed", o.seed, "seed of the pixel noise (and of the study's starts)")
-      ->capture_default_str();
-  app.add_option("--start-x", o.start_x_m, "start x (m), lateral")
-      ->check(ok)
-      ->capture_default_str();
-  app.add_option("--start-y", o.start_y_m, "start y (m), < 0: in front of the station")
-      ->check(ok)
-      ->capture_default_str();
+  app.add_option("--seed", o.seed, "seed of the pixel noise (and of the study's starts)");
+  app.add_option("--start-x", o.start_x_m, "start x (m), lateral")->check(ok);
+  app.add_option("--start-y", o.start_y_m, "start y (m), < 0: in front of the station")->check(ok);
   app.add_option("--start-heading", o.start_heading_deg, "start heading (deg), 90: facing it")
-      ->check(ok)
-      ->capture_default_str();
-  app.add_option("--noise", camera_params.sigma_px, "pixel noise sigma (px)")
-      ->check(nonneg)
-      ->capture_default_str();
-  app.add_option("--fps", camera_params.frame_rate_hz, "frame rate (frames/s)")
-      ->check(pos)
-      ->capture_default_str();
-  app.add_option("--focal", camera_params.focal_px, "focal length lambda p (px)")
-      ->check(pos)
-      ->capture_default_str();
-  app.add_option("--spacing", camera_params.spacing_m, "feature spacing d (m)")
-      ->check(pos)
-      ->capture_default_str();
-  app.add_option("--k1", o.k1_degps_per_px, "Start/Reverse turn gain (deg/s per px)")
-      ->check(pos)
-      ->capture_default_str();
-  app.add_option("--k2", o.k2_degps_per_px, "Forward turn gain (deg/s per px)")
-      ->check(pos)
-      ->capture_default_str();
-  app.add_option("--c-min", cp.c_min_px, "smallest virtual edge c_min (px)")
-      ->check(ok)
-      ->capture_default_str();
-  app.add_option("--c-max", cp.c_max_px, "largest virtual edge c_max (px)")
-      ->check(ok)
-      ->capture_default_str();
+      ->check(ok);
+  app.add_option("--noise", camera_params.sigma_px, "pixel noise sigma (px)")->check(nonneg);
+  app.add_option("--fps", camera_params.frame_rate_hz, "frame rate (frames/s)")->check(pos);
+  app.add_option("--focal", camera_params.focal_px, "focal length lambda p (px)")->check(pos);
+  app.add_option("--spacing", camera_params.spacing_m, "feature spacing d (m)")->check(pos);
+  app.add_option("--k1", o.k1_degps_per_px, "Start/Reverse turn gain (deg/s per px)")->check(pos);
+  app.add_option("--k2", o.k2_degps_per_px, "Forward turn gain (deg/s per px)")->check(pos);
+  app.add_option("--c-min", cp.c_min_px, "smallest virtual edge c_min (px)")->check(ok);
+  app.add_option("--c-max", cp.c_max_px, "largest virtual edge c_max (px)")->check(ok);
   app.add_option("--c-gain", cp.c_gain, "k_s k of eq. 5.9 (px of c per px of asymmetry)")
-      ->check(ok)
-      ->capture_default_str();
+      ->check(ok);
   app.add_flag("--no-adapt",
                o.no_adapt,
                "fixed virtual edge --c-static instead of eq. 5.9 (one attempt; --study always "
                "runs adaptive, fixed c_max and fixed c_min)");
   app.add_option("--c-static", cp.c_static_px, "the fixed virtual edge with --no-adapt (px)")
-      ->check(ok)
-      ->capture_default_str();
+      ->check(ok);
   app.add_flag("--raw-asymmetry",
                o.raw_asymmetry,
                "thesis as printed: side and c from the raw f1 - f2 (default: scaled to the "
@@ -424,74 +401,47 @@ int main(int argc, char** argv) {
       "end a forward move only on the uncontrolled feature (default: also when A >= W - 2c)");
   app.add_option("--start-exit-frames",
                  cp.start_exit_frames,
-                 "frames Start averages f1, f2, E_A over once aligned (thesis: 1)")
-      ->capture_default_str();
+                 "frames Start averages f1, f2, E_A over once aligned (thesis: 1)");
   app.add_option(
-         "--parked-frames", cp.parked_frames, "consecutive frames eq. 5.1 must hold (thesis: 1)")
-      ->capture_default_str();
-  app.add_option("--A-min", cp.A_min_px, "reverse until the station is narrower (px)")
-      ->check(ok)
-      ->capture_default_str();
-  app.add_option("--v-forward", cp.v_forward_mps, "forward speed v_c (m/s)")
-      ->check(ok)
-      ->capture_default_str();
-  app.add_option("--v-reverse", cp.v_reverse_mps, "reverse speed v_r (m/s)")
-      ->check(ok)
-      ->capture_default_str();
-  app.add_option("--v-slow", cp.v_reverse_slow_mps, "reverse speed near the goal (m/s)")
-      ->check(ok)
-      ->capture_default_str();
-  app.add_option("--delta-u", cp.delta_u_px, "parking threshold on e1..e3 (px)")
-      ->check(ok)
-      ->capture_default_str();
-  app.add_option("--delta-a", cp.delta_A_px, "parking threshold on E_A (px)")
-      ->check(ok)
-      ->capture_default_str();
-  app.add_option("--max-omega", o.max_omega_degps, "turn-rate limit (deg/s)")
-      ->check(pos)
-      ->capture_default_str();
+         "--parked-frames", cp.parked_frames, "consecutive frames eq. 5.1 must hold (thesis: 1)");
+  app.add_option("--A-min", cp.A_min_px, "reverse until the station is narrower (px)")->check(ok);
+  app.add_option("--v-forward", cp.v_forward_mps, "forward speed v_c (m/s)")->check(ok);
+  app.add_option("--v-reverse", cp.v_reverse_mps, "reverse speed v_r (m/s)")->check(ok);
+  app.add_option("--v-slow", cp.v_reverse_slow_mps, "reverse speed near the goal (m/s)")->check(ok);
+  app.add_option("--delta-u", cp.delta_u_px, "parking threshold on e1..e3 (px)")->check(ok);
+  app.add_option("--delta-a", cp.delta_A_px, "parking threshold on E_A (px)")->check(ok);
+  app.add_option("--max-omega", o.max_omega_degps, "turn-rate limit (deg/s)")->check(pos);
   double alpha_degps2 = robot.max_alpha_radps2 / kRadPerDeg;
   app.add_option("--accel", robot.max_accel_mps2, "robot acceleration limit (m/s^2, 0: none)")
-      ->check(nonneg)
-      ->capture_default_str();
+      ->check(nonneg);
   app.add_option("--alpha", alpha_degps2, "robot turn acceleration limit (deg/s^2, 0: none)")
-      ->check(nonneg)
-      ->capture_default_str();
+      ->check(nonneg);
   app.add_option("--bump",
                  robot.front_m,
                  "end as bumped when the robot centre comes this close to the station line "
                  "(m, 0: off)")
-      ->check(nonneg)
-      ->capture_default_str();
-  app.add_option("--max-time", o.max_time_s, "give up after this many seconds")
-      ->check(pos)
-      ->capture_default_str();
+      ->check(nonneg);
+  app.add_option("--max-time", o.max_time_s, "give up after this many seconds")->check(pos);
   app.add_flag("--json", o.json, "print one JSON object instead of text");
   app.add_option("--svg-prefix",
                  o.svg_prefix,
                  "write <prefix>_path.svg and <prefix>_features.svg (--study: <prefix>_study.svg); "
-                 "\"\" for none")
-      ->capture_default_str();
+                 "\"\" for none");
   app.add_option("--csv", o.csv, "per-frame CSV of the run (pose, u, commands, state)");
   app.add_flag("--study", o.study, "run the repeatability study instead of one attempt");
-  app.add_option("--runs", o.study_options.runs, "study: number of random starts")
-      ->capture_default_str();
+  app.add_option("--runs", o.study_options.runs, "study: number of random starts");
   app.add_option("--study-r-min", o.study_options.r_min_m, "study: nearest start to P2 (m)")
-      ->check(ok)
-      ->capture_default_str();
+      ->check(ok);
   app.add_option("--study-r-max", o.study_options.r_max_m, "study: farthest start from P2 (m)")
-      ->check(ok)
-      ->capture_default_str();
+      ->check(ok);
   app.add_option("--study-angle",
                  o.study_options.max_angle_deg,
                  "study: largest polar angle of a start from the axis (deg)")
-      ->check(ok)
-      ->capture_default_str();
+      ->check(ok);
   app.add_option("--study-heading",
                  o.study_options.max_heading_offset_deg,
                  "study: largest heading offset from P2 (deg)")
-      ->check(ok)
-      ->capture_default_str();
+      ->check(ok);
   CLI11_PARSE(app, argc, argv);
 
   try {

@@ -111,9 +111,12 @@
 
 #include "svg_map.hpp"
 #include "../common/cli_checks.hpp"
+#include "../common/text.hpp"
 
 
 namespace {
+
+using sylva_examples::fixed;
 
 using sylva::Gaussian;
 using sylva::Id;
@@ -349,12 +352,6 @@ RunResult runOnce(const World& world, const Options& o, int run, StepStats& stat
   return result;
 }
 
-std::string fixed(double v, int digits) {
-  std::ostringstream os;
-  os << std::fixed << std::setprecision(digits) << v;
-  return os.str();
-}
-
 int run(const Options& o) {
   const World world = makeWorld(o);
   StepStats stats;
@@ -500,6 +497,7 @@ int main(int argc, char** argv) {
   CLI::App app{
       "2D EKF-SLAM (sylva::Ekf<Unicycle2D, Point2> with RangeBearing) on a simulated loop with "
       "range-bearing landmarks; prints map and pose errors and the robot-pose NEES."};
+  app.option_defaults()->always_capture_default();  // every option shows its default in --help
   app.footer(
       "Defaults: 120 landmarks along a 120 m loop driven 1.2 times (144 m, with a loop closure),\n"
       "sensor noise of Table 3.1 of the multisensor thesis (5 cm, 1 deg), 10 m range, +-90 deg.\n"
@@ -512,69 +510,44 @@ int main(int argc, char** argv) {
       "InverseRangeBearing. The robot-pose NEES is recorded from step 1 on: after the first\n"
       "prediction from P0 = 0 the pose covariance has rank 2. Same flags give the same output\n"
       "bit for bit.");
-  app.add_option("--landmarks", o.landmarks, "number of landmarks")
-      ->check(CLI::Range(1, 100000))
-      ->capture_default_str();
+  app.add_option("--landmarks", o.landmarks, "number of landmarks")->check(CLI::Range(1, 100000));
   app.add_option("--min-separation", o.min_separation_m, "minimum distance between landmarks (m)")
-      ->check(positive(true))
-      ->capture_default_str();
-  app.add_option("--perimeter", o.perimeter_m, "length of one lap (m)")
-      ->check(positive(false))
-      ->capture_default_str();
+      ->check(positive(true));
+  app.add_option("--perimeter", o.perimeter_m, "length of one lap (m)")->check(positive(false));
   app.add_option("--steps", o.steps, "number of steps (0: 1.2 laps)")
-      ->check(CLI::Range(0, 100000000))
-      ->capture_default_str();
-  app.add_option("--dt", o.dt_s, "time step (s)")->check(positive(false))->capture_default_str();
-  app.add_option("--speed", o.speed_mps, "forward speed (m/s)")
-      ->check(positive(false))
-      ->capture_default_str();
-  app.add_option("--max-range", o.max_range_m, "sensor range (m)")
-      ->check(positive(false))
-      ->capture_default_str();
+      ->check(CLI::Range(0, 100000000));
+  app.add_option("--dt", o.dt_s, "time step (s)")->check(positive(false));
+  app.add_option("--speed", o.speed_mps, "forward speed (m/s)")->check(positive(false));
+  app.add_option("--max-range", o.max_range_m, "sensor range (m)")->check(positive(false));
   app.add_option("--fov", o.fov_half_angle_deg, "sensor field of view, half angle (deg)")
-      ->check(CLI::Range(0.0, 180.0))
-      ->capture_default_str();
-  app.add_option("--sigma-range", o.sigma_range_m, "range noise (m)")
-      ->check(positive(false))
-      ->capture_default_str();
+      ->check(CLI::Range(0.0, 180.0));
+  app.add_option("--sigma-range", o.sigma_range_m, "range noise (m)")->check(positive(false));
   app.add_option("--sigma-bearing", o.sigma_bearing_deg, "bearing noise (deg)")
-      ->check(positive(false))
-      ->capture_default_str();
-  app.add_option("--sigma-v", o.sigma_v_mps, "odometry speed noise (m/s)")
-      ->check(positive(false))
-      ->capture_default_str();
+      ->check(positive(false));
+  app.add_option("--sigma-v", o.sigma_v_mps, "odometry speed noise (m/s)")->check(positive(false));
   app.add_option("--sigma-omega", o.sigma_omega_degps, "odometry turn-rate noise (deg/s)")
-      ->check(positive(false))
-      ->capture_default_str();
+      ->check(positive(false));
   app.add_option("--filter-noise-scale",
                  o.filter_noise_scale,
                  "factor on the noise sigmas the filter is told (1: the truth)")
-      ->check(positive(false))
-      ->capture_default_str();
+      ->check(positive(false));
   app.add_option("--association", o.association, "data association: known, nn or jcbb")
-      ->check(CLI::IsMember({"known", "nn", "jcbb"}))
-      ->capture_default_str();
+      ->check(CLI::IsMember({"known", "nn", "jcbb"}));
   app.add_option("--update",
                  o.update,
                  "batched: all paired readings of a step in one update; sequential: one by one")
-      ->check(CLI::IsMember({"batched", "sequential"}))
-      ->capture_default_str();
+      ->check(CLI::IsMember({"batched", "sequential"}));
   app.add_option("--gate", o.gate_probability, "chi-square gate probability of nn and jcbb")
-      ->check(CLI::Range(0.5, 0.999999))
-      ->capture_default_str();
+      ->check(CLI::Range(0.5, 0.999999));
   app.add_option("--new-landmark-gate",
                  o.new_landmark_probability,
                  "nn/jcbb: an unpaired reading becomes a landmark when its NIS to every candidate "
                  "exceeds this chi-square quantile")
-      ->check(CLI::Range(0.5, 0.99999999))
-      ->capture_default_str();
-  app.add_option("--runs", o.runs, "Monte Carlo runs")
-      ->check(CLI::Range(1, 1000000))
-      ->capture_default_str();
-  app.add_option("--seed", o.seed, "seed of the world and of the runs")->capture_default_str();
+      ->check(CLI::Range(0.5, 0.99999999));
+  app.add_option("--runs", o.runs, "Monte Carlo runs")->check(CLI::Range(1, 1000000));
+  app.add_option("--seed", o.seed, "seed of the world and of the runs");
   app.add_flag("--json", o.json, "print one JSON object instead of text");
-  app.add_option("--svg", o.svg, "SVG map of the first run (\"\" to disable)")
-      ->capture_default_str();
+  app.add_option("--svg", o.svg, "SVG map of the first run (\"\" to disable)");
   app.add_option("--csv", o.csv, "CSV of the per-step run-averaged NEES and errors");
   CLI11_PARSE(app, argc, argv);
 

@@ -182,6 +182,7 @@ std::string describePlan(const StudyPlan& p, bool quick, std::size_t runs) {
 int main(int argc, char** argv) {
   CLI::App app{
       "tree_width_study: the tree-width thesis' Monte Carlo study (Ch. 4) for three pipelines"};
+  app.option_defaults()->always_capture_default();  // every option shows its default in --help
   bool quick = false;
   int threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   std::string shard_text = "1/1";
@@ -193,30 +194,22 @@ int main(int argc, char** argv) {
   int limit = 0;
   app.add_flag("--quick", quick, "the reduced sweep (under 10 minutes on 2 cores)");
   app.add_option("--threads", threads, "worker threads (default: every core)")
-      ->capture_default_str()
       ->check(CLI::PositiveNumber);
   app.add_option(
-         "--shard", shard_text, "run only shard K of N (jobs with index % N == K - 1); no report")
-      ->capture_default_str();
-  app.add_option("--seed", seed, "study seed (maps, removals and noise derive from it)")
-      ->capture_default_str();
-  app.add_option("--out", out_path, "the runs, one JSON line each, in job order")
-      ->capture_default_str();
+         "--shard", shard_text, "run only shard K of N (jobs with index % N == K - 1); no report");
+  app.add_option("--seed", seed, "study seed (maps, removals and noise derive from it)");
+  app.add_option("--out", out_path, "the runs, one JSON line each, in job order");
   app.add_option(
-         "--docs", docs, "where the report goes: results.md, study/summary.csv, images/study_*.svg")
-      ->capture_default_str();
+         "--docs", docs, "where the report goes: results.md, study/summary.csv, images/study_*.svg");
   app.add_flag("--no-report", no_report, "only the runs");
   app.add_option("--nees-every", nees_every, "camera pose NEES every this many frames")
-      ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
   int max_frames = 0;
   app.add_option("--limit",
                  limit,
-                 "only the first N runs of the sweep, before sharding (for trying things; 0: all)")
-      ->capture_default_str();
+                 "only the first N runs of the sweep, before sharding (for trying things; 0: all)");
   app.add_option(
-         "--frames", max_frames, "stop each run after this many frames (for trying things; 0: all)")
-      ->capture_default_str();
+         "--frames", max_frames, "stop each run after this many frames (for trying things; 0: all)");
 
   std::string tuned_path;
   app.add_option("--tuned",

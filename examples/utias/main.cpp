@@ -38,6 +38,7 @@
 #include <sylva/datasets/utias_mrclam.hpp>
 
 #include "../common/cli_checks.hpp"
+#include "../common/text.hpp"
 #include "../range_bearing_slam/svg_map.hpp"
 #include "evaluation.hpp"
 #include "fit.hpp"
@@ -50,6 +51,8 @@
 #endif
 
 namespace {
+
+using sylva_examples::fixed;
 
 using nlohmann::json;
 using sylva::Vec;
@@ -83,12 +86,6 @@ std::string recordingName(const std::string& folder) {
   const std::string name = p.filename().string();
   return name.empty() || name == "." || name == ".." ? std::filesystem::absolute(p).lexically_normal().filename().string()
                                                      : name;
-}
-
-std::string fixed(double v, int digits) {
-  std::ostringstream os;
-  os << std::fixed << std::setprecision(digits) << v;
-  return os.str();
 }
 
 /// Round to 4 significant decimals for the JSON (the figures are not more precise than that).
@@ -579,16 +576,15 @@ int main(int argc, char** argv) {
       "EKF-SLAM (sylva::Ekf<Unicycle2D, Point2>, RangeBearing) on a UTIAS MRCLAM recording (Leung et al., "
       "IJRR 30(8) 2011), each robot with known (barcodes) and unknown (JCBB) correspondences; scores "
       "against the Vicon ground truth."};
+  app.option_defaults()->always_capture_default();  // every option shows its default in --help
   app.footer(
       "One noise configuration for all robots (examples/utias/noise_model.hpp, docs/examples/utias.md).\n"
       "Get the data from http://asrl.utias.utoronto.ca/datasets/mrclam/ and pass the folder with --data.");
   CLI::Option* data_option =
-      app.add_option("--data", o.data, "folder of one MRCLAM recording (Barcodes.dat, Robot1_Odometry.dat, ...); its name labels the output")
-          ->capture_default_str();
-  app.add_option("--robot", o.robot, "robot 1-5 (0: all five)")->check(CLI::Range(0, 5))->capture_default_str();
+      app.add_option("--data", o.data, "folder of one MRCLAM recording (Barcodes.dat, Robot1_Odometry.dat, ...); its name labels the output");
+  app.add_option("--robot", o.robot, "robot 1-5 (0: all five)")->check(CLI::Range(0, 5));
   app.add_option("--max-time", o.max_time_s, "stop after this many seconds of data (0: all)")
-      ->check(positive(true))
-      ->capture_default_str();
+      ->check(positive(true));
   app.add_flag("--json", o.json, "print one JSON object instead of text");
   app.add_option("--svg-prefix", o.svg_prefix, "write <prefix>_robot<N>.svg for each robot");
   app.add_flag("--noise-study", o.noise_study,
@@ -603,74 +599,56 @@ int main(int argc, char** argv) {
                "default's rule). Text table, or JSON with --json");
   auto& c = o.noise;
   app.add_option("--command-delay", c.command_delay_s, "a command logged at t acts from t + this (s)")
-      ->check(positive(true))
-      ->capture_default_str();
+      ->check(positive(true));
   app.add_option("--command-jitter", c.command_jitter_s,
                  "timing uncertainty of a command change (s): adds |delta u| x this to the pose")
-      ->check(positive(true))
-      ->capture_default_str();
+      ->check(positive(true));
   app.add_option("--v-gain", c.v_gain, "the robot drives this x the commanded speed")
-      ->check(positive(false))
-      ->capture_default_str();
+      ->check(positive(false));
   app.add_option("--omega-gain", c.omega_gain, "the robot turns this x the commanded turn rate")
-      ->check(positive(false))
-      ->capture_default_str();
+      ->check(positive(false));
   app.add_option("--v-turn-loss", c.v_turn_loss, "speed lost per rad/s of turn rate while driving (m/rad)")
-      ->check(positive(true))
-      ->capture_default_str();
-  app.add_option("--omega-bias", c.omega_bias, "added to the commanded turn rate (rad/s)")->capture_default_str();
-  app.add_option("--sigma-range", c.sigma_range_m, "range noise at zero range (m)")->check(positive(false))->capture_default_str();
+      ->check(positive(true));
+  app.add_option("--omega-bias", c.omega_bias, "added to the commanded turn rate (rad/s)");
+  app.add_option("--sigma-range", c.sigma_range_m, "range noise at zero range (m)")->check(positive(false));
   app.add_option("--sigma-range-per-m", c.sigma_range_per_m, "range noise added per metre of range (m/m)")
-      ->check(positive(true))
-      ->capture_default_str();
+      ->check(positive(true));
   app.add_option("--sigma-bearing", c.sigma_bearing_rad, "bearing noise (rad)")
-      ->check(positive(false))
-      ->capture_default_str();
+      ->check(positive(false));
   app.add_option("--v-scale", c.v_scale, "speed noise density per m/s of speed (1/sqrt(s))")
-      ->check(positive(true))
-      ->capture_default_str();
+      ->check(positive(true));
   app.add_option("--v-floor", c.v_floor, "speed noise density floor (m/sqrt(s))")
-      ->check(positive(false))
-      ->capture_default_str();
+      ->check(positive(false));
   app.add_option("--omega-scale", c.omega_scale, "turn-rate noise density per rad/s of turn rate (1/sqrt(s))")
-      ->check(positive(true))
-      ->capture_default_str();
+      ->check(positive(true));
   app.add_option("--omega-floor", c.omega_floor, "turn-rate noise density floor (rad/sqrt(s))")
-      ->check(positive(false))
-      ->capture_default_str();
+      ->check(positive(false));
   app.add_option("--landmark-interval", c.landmark_interval_s,
                  "fuse each landmark at most once per this many seconds (0: every reading)")
-      ->check(positive(true))
-      ->capture_default_str();
+      ->check(positive(true));
   app.add_option("--outlier-gate", c.outlier_gate_probability,
                  "known ids: chi-square probability above which an observation is rejected")
-      ->check(CLI::Range(0.5, 0.99999999))
-      ->capture_default_str();
+      ->check(CLI::Range(0.5, 0.99999999));
   app.add_option("--jcbb-noise-scale", c.jcbb_noise_scale,
                  "JCBB associates with this x the measurement sigmas (and fuses with the sigmas themselves)")
-      ->check(positive(false))
-      ->capture_default_str();
+      ->check(positive(false));
   app.add_option("--jcbb-gate", c.jcbb_gate_probability, "chi-square gate probability of JCBB")
-      ->check(CLI::Range(0.5, 0.999999))
-      ->capture_default_str();
+      ->check(CLI::Range(0.5, 0.999999));
   std::string gains = c.online_gains ? "online" : "fixed";
   app.add_option("--gains", gains,
                  "online: the speed gain, turn-rate gain and turn-rate bias are states of the filter "
                  "(Unicycle2DWithBias) with prior means --v-gain - 1, --omega-gain - 1, --omega-bias and sigmas "
                  "--gain-sigma; fixed: they are applied as a fixed calibration")
-      ->check(CLI::IsMember({"online", "fixed"}))
-      ->capture_default_str();
+      ->check(CLI::IsMember({"online", "fixed"}));
   std::vector<double> gain_sigma{c.gain_sigma[0], c.gain_sigma[1], c.gain_sigma[2]};
   std::vector<double> gain_walk{c.gain_walk[0], c.gain_walk[1], c.gain_walk[2]};
   app.add_option("--gain-sigma", gain_sigma, "online gains: prior sigmas of [k_v, k_w, b_w] (-, -, rad/s)")
       ->expected(3)
-      ->check(CLI::NonNegativeNumber)
-      ->capture_default_str();
+      ->check(CLI::NonNegativeNumber);
   app.add_option("--gain-walk", gain_walk,
                  "online gains: random-walk densities of [k_v, k_w, b_w] (1/sqrt(s), 1/sqrt(s), rad/s/sqrt(s))")
       ->expected(3)
-      ->check(CLI::NonNegativeNumber)
-      ->capture_default_str();
+      ->check(CLI::NonNegativeNumber);
   CLI11_PARSE(app, argc, argv);
   c.online_gains = gains == "online";
   c.gain_sigma = Vec<3>(gain_sigma[0], gain_sigma[1], gain_sigma[2]);

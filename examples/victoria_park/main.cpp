@@ -174,53 +174,54 @@ bool compareCompressed(const sylva::datasets::VictoriaParkData& data, const Conf
 
 int main(int argc, char** argv) {
   CLI::App app{"EKF-SLAM on the Victoria Park data set (point and tree landmarks, unknown association)"};
+  app.option_defaults()->always_capture_default();  // every option shows its default in --help
   Config cfg;
   std::string data_dir = VICTORIA_PARK_DEFAULT_DATA;
   bool json = false, study = false;
   std::string svg_prefix, variants = "both";
   int threads = 2;
   std::string errors_csv;
-  app.add_option("--data", data_dir, "folder with measurements.dat, odometry.txt, gps.txt")->capture_default_str();
+  app.add_option("--data", data_dir, "folder with measurements.dat, odometry.txt, gps.txt");
   app.add_flag("--json", json, "print the results as JSON");
   app.add_option("--svg-prefix", svg_prefix, "write <prefix>_point.svg and <prefix>_tree.svg");
-  app.add_option("--variant", variants, "point, tree or both")->check(CLI::IsMember({"point", "tree", "both"}))->capture_default_str();
-  app.add_option("--duration", cfg.duration_s, "seconds of data to run (0: all)")->check(sylva_examples::positive(true))->capture_default_str();
-  app.add_option("--association", cfg.association, "jcbb or nn")->check(CLI::IsMember({"jcbb", "nn"}))->capture_default_str();
+  app.add_option("--variant", variants, "point, tree or both")->check(CLI::IsMember({"point", "tree", "both"}));
+  app.add_option("--duration", cfg.duration_s, "seconds of data to run (0: all)")->check(sylva_examples::positive(true));
+  app.add_option("--association", cfg.association, "jcbb or nn")->check(CLI::IsMember({"jcbb", "nn"}));
   app.add_option("--linearization", cfg.linearization,
                  "first-estimates (FEJ), invariant (the right-invariant EKF) or current (the textbook EKF)")
-      ->check(CLI::IsMember({"first-estimates", "invariant", "current"}))->capture_default_str();
+      ->check(CLI::IsMember({"first-estimates", "invariant", "current"}));
   app.add_option("--bias-states", cfg.bias_states,
                  "biases estimated online (Ackermann2DWithBias): none, speed (encoder scale error), steering "
                  "(steering offset) or both")
-      ->check(CLI::IsMember({"none", "speed", "steering", "both"}))->capture_default_str();
+      ->check(CLI::IsMember({"none", "speed", "steering", "both"}));
   app.add_option("--speed-scale-prior", cfg.speed_scale_prior, "prior sigma of the speed scale error")
-      ->check(sylva_examples::positive(false))->capture_default_str();
+      ->check(sylva_examples::positive(false));
   app.add_option("--steering-offset-prior", cfg.steering_offset_prior_rad, "prior sigma of the steering offset (rad)")
-      ->check(sylva_examples::positive(false))->capture_default_str();
+      ->check(sylva_examples::positive(false));
   app.add_option("--speed-scale-walk", cfg.speed_scale_walk, "random walk of the speed scale error (1/sqrt(s))")
-      ->check(sylva_examples::positive(false))->capture_default_str();
+      ->check(sylva_examples::positive(false));
   app.add_option("--steering-offset-walk", cfg.steering_offset_walk_rad, "random walk of the steering offset (rad/sqrt(s))")
-      ->check(sylva_examples::positive(false))->capture_default_str();
+      ->check(sylva_examples::positive(false));
   app.add_option("--gate", cfg.gate_probability, "probability of the association's chi-square gates")
-      ->check(CLI::Range(0.5, 0.999999))->capture_default_str();
+      ->check(CLI::Range(0.5, 0.999999));
   app.add_option("--predict", cfg.predict, "scan (integrate odometry between scans) or odometry (predict per sample)")
-      ->check(CLI::IsMember({"scan", "odometry"}))->capture_default_str();
-  app.add_option("--laser-left", cfg.laser_left_m, "laser lateral offset b (m, + = left)")->check(sylva_examples::finite(false))->capture_default_str();
-  app.add_option("--max-range", cfg.max_range_m, "detections farther away are ignored (m)")->check(sylva_examples::positive(false))->capture_default_str();
-  app.add_option("--sigma-speed", cfg.noise.speed_mps, "encoder speed noise per 40 Hz sample (m/s)")->check(sylva_examples::positive(false))->capture_default_str();
-  app.add_option("--sigma-steering", cfg.noise.steering_rad, "steering noise per 40 Hz sample (rad)")->check(sylva_examples::positive(false))->capture_default_str();
-  app.add_option("--sigma-range", cfg.noise.range_m, "range noise (m)")->check(sylva_examples::positive(false))->capture_default_str();
-  app.add_option("--sigma-bearing", cfg.noise.bearing_rad, "bearing noise (rad)")->check(sylva_examples::positive(false))->capture_default_str();
-  app.add_option("--sigma-diameter", cfg.diameter_sigma_m, "diameter noise (m)")->check(sylva_examples::positive(false))->capture_default_str();
-  app.add_option("--confirm", cfg.confirm_sightings, "sightings that confirm a new landmark")->check(CLI::Range(1, 100))->capture_default_str();
+      ->check(CLI::IsMember({"scan", "odometry"}));
+  app.add_option("--laser-left", cfg.laser_left_m, "laser lateral offset b (m, + = left)")->check(sylva_examples::finite(false));
+  app.add_option("--max-range", cfg.max_range_m, "detections farther away are ignored (m)")->check(sylva_examples::positive(false));
+  app.add_option("--sigma-speed", cfg.noise.speed_mps, "encoder speed noise per 40 Hz sample (m/s)")->check(sylva_examples::positive(false));
+  app.add_option("--sigma-steering", cfg.noise.steering_rad, "steering noise per 40 Hz sample (rad)")->check(sylva_examples::positive(false));
+  app.add_option("--sigma-range", cfg.noise.range_m, "range noise (m)")->check(sylva_examples::positive(false));
+  app.add_option("--sigma-bearing", cfg.noise.bearing_rad, "bearing noise (rad)")->check(sylva_examples::positive(false));
+  app.add_option("--sigma-diameter", cfg.diameter_sigma_m, "diameter noise (m)")->check(sylva_examples::positive(false));
+  app.add_option("--confirm", cfg.confirm_sightings, "sightings that confirm a new landmark")->check(CLI::Range(1, 100));
   app.add_option("--errors-csv", errors_csv, "write <prefix>_<variant>.csv: time, aligned GPS error, valid flag per fix");
   app.add_flag("--robustness", study, "run the 81-setting noise study (every noise value x1.5, x1, /1.5)");
-  app.add_option("--threads", threads, "threads for the robustness study")->check(CLI::Range(1, 64))->capture_default_str();
+  app.add_option("--threads", threads, "threads for the robustness study")->check(CLI::Range(1, 64));
   app.add_option("--compress-radius", cfg.compress_radius_m,
                  "the compressed EKF's region radius (m; 0: the plain filter; needs --linearization current)")
-      ->check(sylva_examples::positive(true))->capture_default_str();
+      ->check(sylva_examples::positive(true));
   app.add_option("--compress-ahead", cfg.compress_ahead_m, "the region's centre ahead of the car (m)")
-      ->check(sylva_examples::finite(false))->capture_default_str();
+      ->check(sylva_examples::finite(false));
   bool compare_compressed = false;
   app.add_flag("--compare-compressed", compare_compressed,
                "run each variant plain and compressed (--compress-radius, default 2 x --max-range, centred "
