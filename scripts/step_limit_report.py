@@ -182,6 +182,28 @@ def kernel_section(label, rows, failing, w, figures):
         w("")
 
 
+def gain_product_section(label, runs, w, figures):
+    """The gain's product W = P H^T L^-T, triangular over full, paired within each repetition."""
+    sizes = sorted(n for (family, n) in runs if family == "PairedGainProduct")
+    if not sizes:
+        return
+    takes = {int(e.get("filter_takes_triangular", 0)) for n in sizes for e in runs[("PairedGainProduct", n)].values()}
+    choice = "the triangular product" if takes == {1} else "the full product" if takes == {0} else "mixed (?)"
+    w("The gain's product W = P H^T L^-T both ways, paired within each iteration (`BM_PairedGainProduct`, "
+      "ranks 16-30): the triangular product, which skips the zeros of L^-1, over the full one. "
+      f"This build's filter takes {choice} (`SymmetricUpdate::kTriangularGain`, chosen by Eigen's packet "
+      "width on this evidence).")
+    w("")
+    w("| n | triangular / full: median [range] |")
+    w("|---|---|")
+    for n in sizes:
+        ratios = [e["ratio"] for e in runs[("PairedGainProduct", n)].values()]
+        w(f"| {n} | {statistics.median(ratios):.2f} [{min(ratios):.2f}, {max(ratios):.2f}] |")
+        figures[f"{label}_triangular_gain_ratio_{n}"] = f"{statistics.median(ratios):.2f}"
+    w("")
+    figures[f"{label}_filter_takes"] = choice
+
+
 def gain_section(steps, w, figures):
     """What -march=native gains: the baseline step over the native one at each N."""
     sizes = sorted(set(steps["baseline"]) & set(steps["native"]))
@@ -249,6 +271,7 @@ def main():
         rows = analyse(runs, gemm)
         figures[f"{label}_runs"] = f"{min(len(r['ratios']) for r in rows)}" if rows else "0"
         section(name, label, rows, gemm, context, w, figures)
+        gain_product_section(label, runs, w, figures)
         steps[label] = {n: [e["seconds"] for e in runs[("StepBatched", n)].values()]
                         for (family, n) in runs if family == "StepBatched"}
     gain_section(steps, w, figures)
