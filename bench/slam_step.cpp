@@ -32,9 +32,9 @@
 ///                             prefixes of the batched step, for where its time goes (below)
 ///   BM_PhaseGain              the factor of S and the gain W = P H^T L^-T alone, at the step's
 ///                             n and rank (below)
-///   BM_PairedGainProduct      (the argument is n) the gain's product P H^T L^-T, full and
-///                             skipping the zeros of L^-1, paired; counter `ratio`: evidence
-///                             for SymmetricUpdate::kTriangularGain
+///   BM_PairedGain             (the argument is n) the gain P H^T L^-T by a triangular solve
+///                             and by L^-1 and a product, paired; counter `ratio`: evidence for
+///                             SymmetricUpdate::kGainBySolve
 ///
 /// One iteration of a step family is one step of lap 2: iteration i runs step i mod K of
 /// lap 2 (K = min(lap length, 40)), starting again from a copy of the end-of-lap-1 filter
@@ -269,8 +269,8 @@ void BM_PhaseRankUpdate(benchmark::State& state) {
 
 /// The other dense kernel of the batched update, at the same n and ranks as
 /// BM_PhaseRankUpdate: the Cholesky factor L of a k x k innovation covariance S, then
-/// SymmetricUpdate::increment, the filter's own code for L^-1, W = P H^T L^-T (an n x k by
-/// k x k product) and the mean's increment. With BM_PhaseRankUpdate it is what any step of this
+/// SymmetricUpdate::increment, the filter's own code for the gain W = P H^T L^-T (n x k, in the
+/// form kGainBySolve picks) and the mean's increment. With BM_PhaseRankUpdate it is what any step of this
 /// update form computes whatever its bookkeeping costs: their sum against the machine limit
 /// says what the step can reach with these kernels (docs/step-limit.md).
 void BM_PhaseGain(benchmark::State& state) {
@@ -306,55 +306,59 @@ void BM_PhaseGain(benchmark::State& state) {
   state.counters["n"] = n;
 }
 
-/// The gain's product W = P H^T L^-T (n x k by k x k, L^-1 lower triangular; the argument is
-/// n) taken both ways SymmetricUpdate::increment can take it, paired: each iteration takes the
-/// full product and the triangular one (which skips the zeros of L^-1), in alternating order,
-/// for a rank k cycling through the small-map step's ranks 16-30. Counter `ratio`: the
-/// triangular product's time over the full one's, summed over the repetition; counter
-/// `filter_takes_triangular`: which of the two this build's filter takes
-/// (SymmetricUpdate::kTriangularGain, chosen by the packet width on this evidence).
-void BM_PairedGainProduct(benchmark::State& state) {
+/// The gain W = P H^T L^-T (n x k, from the Cholesky factor L of a k x k S; the argument is n)
+/// formed both ways SymmetricUpdate::increment can form it, paired: each iteration takes the
+/// product (L^-1 explicitly, then P H^T (L^-1)^T) and the solve (a triangular solve with L^T on
+/// the right, in place on a copy of P H^T), in alternating order, for a rank k cycling through
+/// the small-map step's ranks 16-30. Counter `ratio`: the solve's time over the product's,
+/// summed over the repetition; counter `filter_solves`: which of the two this build's filter
+/// takes (SymmetricUpdate::kGainBySolve, chosen by the packet width on this evidence).
+void BM_PairedGain(benchmark::State& state) {
   using Clock = std::chrono::steady_clock;
   const int n = static_cast<int>(state.range(0));
   constexpr int kMaxRank = 30;
   const Eigen::MatrixXd S = Eigen::MatrixXd::Constant(kMaxRank, kMaxRank, 0.1) + kMaxRank * Eigen::MatrixXd::Identity(kMaxRank, kMaxRank);
-  Eigen::MatrixXd L_inv = Eigen::MatrixXd::Identity(kMaxRank, kMaxRank);
-  Eigen::LLT<Eigen::MatrixXd>(S).matrixL().solveInPlace(L_inv);
+  const Eigen::MatrixXd L = Eigen::LLT<Eigen::MatrixXd>(S).matrixL();
   const Eigen::MatrixXd PHt = Eigen::MatrixXd::Constant(n, kMaxRank, 1e-3);
-  Eigen::MatrixXd W_full(n, kMaxRank);
-  Eigen::MatrixXd W_triangular(n, kMaxRank);
-  double seconds_full = 0.0;
-  double seconds_triangular = 0.0;
+  Eigen::MatrixXd L_inv(kMaxRank, kMaxRank);
+  Eigen::MatrixXd W_product(n, kMaxRank);
+  Eigen::MatrixXd W_solve(n, kMaxRank);
+  double seconds_product = 0.0;
+  double seconds_solve = 0.0;
   int iteration = 0;
-  const auto full = [&](int k) {
+  const auto product = [&](int k) {
     const auto t0 = Clock::now();
-    W_full.leftCols(k).noalias() = PHt.leftCols(k) * L_inv.topLeftCorner(k, k).transpose();
+    auto L_inv_k = L_inv.topLeftCorner(k, k);
+    L_inv_k.setIdentity();
+    L.topLeftCorner(k, k).triangularView<Eigen::Lower>().solveInPlace(L_inv_k);
+    W_product.leftCols(k).noalias() = PHt.leftCols(k) * L_inv_k.transpose();
     benchmark::ClobberMemory();
-    seconds_full += std::chrono::duration<double>(Clock::now() - t0).count();
+    seconds_product += std::chrono::duration<double>(Clock::now() - t0).count();
   };
-  const auto triangular = [&](int k) {
+  const auto solve = [&](int k) {
     const auto t0 = Clock::now();
-    W_triangular.leftCols(k).noalias() =
-        PHt.leftCols(k) * L_inv.topLeftCorner(k, k).transpose().triangularView<Eigen::Upper>();
+    auto W_k = W_solve.leftCols(k);
+    W_k = PHt.leftCols(k);
+    L.topLeftCorner(k, k).transpose().triangularView<Eigen::Upper>().solveInPlace<Eigen::OnTheRight>(W_k);
     benchmark::ClobberMemory();
-    seconds_triangular += std::chrono::duration<double>(Clock::now() - t0).count();
+    seconds_solve += std::chrono::duration<double>(Clock::now() - t0).count();
   };
   for (auto _ : state) {
     const int k = 16 + 2 * (iteration % 8);  // 16, 18, ..., 30
     if ((iteration / 8) % 2 == 0) {
-      full(k);
-      triangular(k);
+      product(k);
+      solve(k);
     } else {
-      triangular(k);
-      full(k);
+      solve(k);
+      product(k);
     }
     ++iteration;
   }
   state.counters["n"] = n;
-  state.counters["ratio"] = seconds_full > 0.0 ? seconds_triangular / seconds_full : 0.0;
-  state.counters["filter_takes_triangular"] = sylva::SymmetricUpdate::kTriangularGain ? 1.0 : 0.0;
-  benchmark::DoNotOptimize(W_full.data());
-  benchmark::DoNotOptimize(W_triangular.data());
+  state.counters["ratio"] = seconds_product > 0.0 ? seconds_solve / seconds_product : 0.0;
+  state.counters["filter_solves"] = sylva::SymmetricUpdate::kGainBySolve ? 1.0 : 0.0;
+  benchmark::DoNotOptimize(W_product.data());
+  benchmark::DoNotOptimize(W_solve.data());
 }
 
 /// P -= W W^T on the lower triangle (detail::subtractLowerRankUpdate) for a rank-24 W and an
@@ -431,7 +435,7 @@ BENCHMARK(BM_PhasePredict)->Apply(mapSizes)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_PhaseLinearize)->Apply(mapSizes)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_PhaseRankUpdate)->Apply(mapSizes)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_PhaseGain)->Apply(mapSizes)->Unit(benchmark::kMicrosecond);
-BENCHMARK(BM_PairedGainProduct)->Arg(103)->Arg(203)->Arg(403)->Arg(1003)->Arg(2003)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_PairedGain)->Arg(103)->Arg(203)->Arg(403)->Arg(1003)->Arg(2003)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_BoundFullReadWrite)->Apply(mapSizes)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_BoundLowerReadWrite)->Apply(mapSizes)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_GemmPeak)->Unit(benchmark::kMicrosecond);

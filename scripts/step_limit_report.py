@@ -147,7 +147,7 @@ def kernel_section(label, rows, failing, w, figures):
     rows = [r for r in rows if "kernel_ratios" in r]
     if not rows:
         return
-    w("What the update's two dense kernels allow: `BM_PhaseGain` (the Cholesky factor of S, L^-1 and "
+    w("What the update's two dense kernels allow: `BM_PhaseGain` (the Cholesky factor of S and "
       "the gain W = P H^T L^-T, by the filter's own `SymmetricUpdate::increment`) plus "
       "`BM_PhaseRankUpdate`, at the step's n and rank, over the limit of the same run. A step also "
       "predicts, linearizes and forms P H^T and S, so it cannot take less than these two: where their "
@@ -182,26 +182,26 @@ def kernel_section(label, rows, failing, w, figures):
         w("")
 
 
-def gain_product_section(label, runs, w, figures):
-    """The gain's product W = P H^T L^-T, triangular over full, paired within each repetition."""
-    sizes = sorted(n for (family, n) in runs if family == "PairedGainProduct")
+def gain_form_section(label, runs, w, figures):
+    """The gain W = P H^T L^-T by a triangular solve over by L^-1 and a product, paired."""
+    sizes = sorted(n for (family, n) in runs if family == "PairedGain")
     if not sizes:
         return
-    takes = {int(e.get("filter_takes_triangular", 0)) for n in sizes for e in runs[("PairedGainProduct", n)].values()}
-    choice = "the triangular product" if takes == {1} else "the full product" if takes == {0} else "mixed (?)"
-    w("The gain's product W = P H^T L^-T both ways, paired within each iteration (`BM_PairedGainProduct`, "
-      "ranks 16-30): the triangular product, which skips the zeros of L^-1, over the full one. "
-      f"This build's filter takes {choice} (`SymmetricUpdate::kTriangularGain`, chosen by Eigen's packet "
-      "width on this evidence).")
+    takes = {int(e.get("filter_solves", 0)) for n in sizes for e in runs[("PairedGain", n)].values()}
+    choice = "the solve" if takes == {1} else "the product" if takes == {0} else "mixed (?)"
+    w("The gain W = P H^T L^-T both ways, from the same factor L, paired within each iteration "
+      "(`BM_PairedGain`, ranks 16-30): a triangular solve with L^T on the right, in place, over L^-1 "
+      f"explicitly and then the product. This build's filter takes {choice} "
+      "(`SymmetricUpdate::kGainBySolve`, chosen by Eigen's packet width on this evidence).")
     w("")
-    w("| n | triangular / full: median [range] |")
+    w("| n | solve / product: median [range] |")
     w("|---|---|")
     for n in sizes:
-        ratios = [e["ratio"] for e in runs[("PairedGainProduct", n)].values()]
+        ratios = [e["ratio"] for e in runs[("PairedGain", n)].values()]
         w(f"| {n} | {statistics.median(ratios):.2f} [{min(ratios):.2f}, {max(ratios):.2f}] |")
-        figures[f"{label}_triangular_gain_ratio_{n}"] = f"{statistics.median(ratios):.2f}"
+        figures[f"{label}_gain_solve_ratio_{n}"] = f"{statistics.median(ratios):.2f}"
     w("")
-    figures[f"{label}_filter_takes"] = choice
+    figures[f"{label}_gain_form"] = choice
 
 
 def gain_section(steps, w, figures):
@@ -271,7 +271,7 @@ def main():
         rows = analyse(runs, gemm)
         figures[f"{label}_runs"] = f"{min(len(r['ratios']) for r in rows)}" if rows else "0"
         section(name, label, rows, gemm, context, w, figures)
-        gain_product_section(label, runs, w, figures)
+        gain_form_section(label, runs, w, figures)
         steps[label] = {n: [e["seconds"] for e in runs[("StepBatched", n)].values()]
                         for (family, n) in runs if family == "StepBatched"}
     gain_section(steps, w, figures)

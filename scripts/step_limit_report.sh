@@ -23,7 +23,7 @@ source "${root}/scripts/lib/install_packages.sh"
 source "${root}/scripts/lib/prefer_clang.sh"
 sylva_install_packages build-essential cmake ninja-build libeigen3-dev libbenchmark-dev python3
 
-filter='^BM_(StepBatched|PhasePredict|PhaseLinearize|PhaseRankUpdate|PhaseGain|PairedGainProduct|BoundLowerReadWrite)/|^BM_GemmPeak'
+filter='^BM_(StepBatched|PhasePredict|PhaseLinearize|PhaseRankUpdate|PhaseGain|PairedGain|BoundLowerReadWrite)/|^BM_GemmPeak'
 for build in baseline native; do
   if [[ "${build}" == baseline ]]; then dir="${baseline_dir}"; native=OFF; else dir="${native_dir}"; native=ON; fi
   sylva_prefer_clang "${dir}"

@@ -76,12 +76,14 @@ struct BatchWorkspace {
 struct SymmetricUpdate {
   static constexpr const char* kName = "SymmetricUpdate";
 
-  /// Whether W = P H^T L^-T skips the zeros of L^-1 (a triangular product, half the flops)
-  /// rather than taking the full product. Chosen by measurement (BM_PairedGainProduct in bench/slam_step.cpp): with
-  /// SSE2's two-double packets, Eigen's triangular product is about a third faster at the
-  /// small-map step's shapes (n = 103 to 403, k = 24); with AVX's wider packets the full GEMM
-  /// is as fast or faster there.
-  static constexpr bool kTriangularGain = Eigen::internal::packet_traits<double>::size <= 2;
+  /// How a batch (M = Eigen::Dynamic) forms W = P H^T L^-T, chosen by measurement
+  /// (BM_PairedGain in bench/slam_step.cpp, both ways paired from the same factor L):
+  ///   true:  a triangular solve with L^T on the right, in place on a copy of P H^T;
+  ///   false: L^-1 explicitly (small, k x k), then the product P H^T (L^-1)^T.
+  /// With SSE2's two-double packets (the baseline x86-64 build) Eigen's triangular solve is
+  /// the faster way at every size measured; with AVX's wider packets its GEMM is, by far at
+  /// large n. So the choice follows the packet width.
+  static constexpr bool kGainBySolve = Eigen::internal::packet_traits<double>::size <= 2;
 
   /// delta = W L^-1 nu with W = P H^T L^-T (L: the Cholesky factor of S), returning W for
   /// `downdate`. `PHt` (n x M) is P H^T; for a fixed M it is overwritten by W.
@@ -92,13 +94,14 @@ struct SymmetricUpdate {
                                                                          Parallel* parallel = nullptr) {
     const int n = static_cast<int>(PHt.rows());
     if constexpr (M == Eigen::Dynamic) {
-      // W = PHt L^-T as a product with the explicit (small, triangular) L^-1: Eigen's blocked
-      // triangular solve on a tall n x km right-hand side is several times slower than a
-      // GEMM. Row blocks keep Eigen's packed panels on the stack.
+      // Row blocks of W (kGainBySolve says how each is formed) keep Eigen's packed panels on
+      // the stack.
       const int cols = static_cast<int>(PHt.cols());
-      auto L_inv = ws.matrix(Workspace::kInverseFactor, cols);
-      L_inv.setIdentity();
-      llt.matrixL().solveInPlace(L_inv);
+      auto L_inv = ws.matrix(Workspace::kInverseFactor, kGainBySolve ? 0 : cols);
+      if constexpr (!kGainBySolve) {
+        L_inv.setIdentity();
+        llt.matrixL().solveInPlace(L_inv);
+      }
       auto W = ws.template gainMatrix<Eigen::Dynamic>(n, cols);
       const int block = detail::lowerRankUpdateTile(cols);
       const int blocks = (n + block - 1) / block;
@@ -106,17 +109,24 @@ struct SymmetricUpdate {
         for (int b = first; b < last; ++b) {
           const int r0 = b * block;
           const int rows = std::min(block, n - r0);
-          if constexpr (kTriangularGain) {
-            W.middleRows(r0, rows).noalias() = PHt.middleRows(r0, rows) * L_inv.transpose().template triangularView<Eigen::Upper>();
+          auto W_rows = W.middleRows(r0, rows);
+          if constexpr (kGainBySolve) {
+            W_rows = PHt.middleRows(r0, rows);
+            llt.matrixU().template solveInPlace<Eigen::OnTheRight>(W_rows);
           } else {
-            W.middleRows(r0, rows).noalias() = PHt.middleRows(r0, rows) * L_inv.transpose();  // L^-1 has zeros above
+            W_rows.noalias() = PHt.middleRows(r0, rows) * L_inv.transpose();  // L^-1 has zeros above
           }
         }
       };
       const int parts = parallel != nullptr && n >= detail::kParallelMinRows ? parallel->concurrency() : 1;
       runRanges(parallel, blocks, parts, rowBlocks);
       auto v = ws.vector(Workspace::kWhitenedInnovation, cols);
-      v.noalias() = L_inv * nu;
+      if constexpr (kGainBySolve) {
+        v = nu;
+        llt.matrixL().solveInPlace(v);
+      } else {
+        v.noalias() = L_inv * nu;
+      }
       delta.noalias() = W * v;
       return W;
     } else {
