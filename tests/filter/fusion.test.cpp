@@ -5,6 +5,7 @@
 
 #include <sylva/core/thread_pool.hpp>
 #include <sylva/detail/lower_rank_update.hpp>
+#include <sylva/filter/update_form.hpp>
 #include <sylva/sylva.hpp>
 #include <sylva/testing/dense_reference_ekf.hpp>
 
@@ -103,6 +104,40 @@ TEST_CASE("the tiled lower rank update gives the same bits on 1, 2 and 3 threads
       CHECK((serial.triangularView<Eigen::StrictlyUpper>().toDenseMatrix().array() ==
              P.triangularView<Eigen::StrictlyUpper>().toDenseMatrix().array())
                 .all());
+    }
+  }
+}
+
+TEST_CASE("a batch's gain by a triangular solve agrees with the product with L^-1", "[filter][fusion]") {
+  // SymmetricUpdate::increment forms W = P H^T L^-T one of two ways (kGainBySolve): both must
+  // give the same W and mean increment to round-off, on one thread and on two.
+  std::mt19937_64 rng(9);
+  std::normal_distribution<double> normal;
+  ThreadPool two(2);
+  for (int n : {103, 700}) {
+    for (int k : {2, 17, 24}) {
+      INFO("n = " << n << ", k = " << k);
+      Eigen::MatrixXd A(k, k), PHt(n, k);
+      for (Eigen::Index i = 0; i < A.size(); ++i) A.data()[i] = normal(rng);
+      for (Eigen::Index i = 0; i < PHt.size(); ++i) PHt.data()[i] = normal(rng);
+      Eigen::MatrixXd S = A * A.transpose() + Eigen::MatrixXd::Identity(k, k);
+      Eigen::VectorXd nu(k);
+      for (Eigen::Index i = 0; i < k; ++i) nu[i] = normal(rng);
+      Eigen::LLT<Eigen::Ref<Eigen::MatrixXd>> llt(S);
+      REQUIRE(llt.info() == Eigen::Success);
+      for (Parallel* parallel : {static_cast<Parallel*>(nullptr), static_cast<Parallel*>(&two)}) {
+        detail::BatchWorkspace<> ws_product, ws_solve;
+        Eigen::Map<Eigen::MatrixXd> PHt_map(PHt.data(), n, k);
+        Eigen::VectorXd delta_product(n), delta_solve(n);
+        const Eigen::MatrixXd W_product =
+            SymmetricUpdate::increment<Eigen::Dynamic, false>(PHt_map, llt, nu, ws_product, delta_product, parallel);
+        const Eigen::MatrixXd W_solve =
+            SymmetricUpdate::increment<Eigen::Dynamic, true>(PHt_map, llt, nu, ws_solve, delta_solve, parallel);
+        // W L^T = P H^T, whichever way W was formed.
+        CHECK(maxAbsDiff(W_solve * llt.matrixU(), PHt) <= 1e-12 * PHt.cwiseAbs().maxCoeff());
+        CHECK(maxAbsDiff(W_product, W_solve) <= 1e-12 * W_product.cwiseAbs().maxCoeff());
+        CHECK(maxAbsDiff(delta_product, delta_solve) <= 1e-12 * delta_product.cwiseAbs().maxCoeff());
+      }
     }
   }
 }

@@ -76,29 +76,34 @@ struct BatchWorkspace {
 struct SymmetricUpdate {
   static constexpr const char* kName = "SymmetricUpdate";
 
-  /// How a batch (M = Eigen::Dynamic) forms W = P H^T L^-T, chosen by measurement
-  /// (BM_PairedGain in bench/slam_step.cpp, both ways paired from the same factor L):
-  ///   true:  a triangular solve with L^T on the right, in place on a copy of P H^T;
-  ///   false: L^-1 explicitly (small, k x k), then the product P H^T (L^-1)^T.
-  /// With SSE2's two-double packets (the baseline x86-64 build) Eigen's triangular solve is
-  /// the faster way at every size measured; with AVX's wider packets its GEMM is, by far at
-  /// large n. So the choice follows the packet width.
-  static constexpr bool kGainBySolve = Eigen::internal::packet_traits<double>::size <= 2;
+  /// How a batch (M = Eigen::Dynamic) forms W = P H^T L^-T:
+  ///   BySolve = false: L^-1 explicitly (small, k x k), then the product P H^T (L^-1)^T;
+  ///   BySolve = true:  a triangular solve with L^T on the right, in place on a copy of P H^T.
+  /// BM_PairedGain (bench/slam_step.cpp) times both from the same factor, paired: with SSE2's
+  /// two-double packets (the baseline x86-64 build) the solve takes about half to two thirds
+  /// of the product's time; with AVX's wider packets it takes longer, up to twice at large n
+  /// (docs/step-limit.md). The filter takes the product in every build for now: the solve
+  /// changes the last bits of a baseline build's results, which moves every published
+  /// figure of the baseline build (and some decisions that flip on them), so it is to be
+  /// switched on, for SSE2 only, together with a regeneration of all of them. The two agree
+  /// to round-off (tests/filter/fusion.test.cpp).
+  static constexpr bool kGainBySolve = false;
 
   /// delta = W L^-1 nu with W = P H^T L^-T (L: the Cholesky factor of S), returning W for
   /// `downdate`. `PHt` (n x M) is P H^T; for a fixed M it is overwritten by W.
   /// With `parallel`, a batch's rows of W are shared among its threads (the same result).
-  template <int M, typename PHtMap, typename Llt, typename Nu, typename Workspace, typename Delta>
+  template <int M, bool BySolve = kGainBySolve, typename PHtMap, typename Llt, typename Nu, typename Workspace,
+            typename Delta>
   static Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, M>> increment(PHtMap& PHt, const Llt& llt, const Nu& nu,
                                                                          Workspace& ws, Delta& delta,
                                                                          Parallel* parallel = nullptr) {
     const int n = static_cast<int>(PHt.rows());
     if constexpr (M == Eigen::Dynamic) {
-      // Row blocks of W (kGainBySolve says how each is formed) keep Eigen's packed panels on
+      // Row blocks of W (BySolve says how each is formed) keep Eigen's packed panels on
       // the stack.
       const int cols = static_cast<int>(PHt.cols());
-      auto L_inv = ws.matrix(Workspace::kInverseFactor, kGainBySolve ? 0 : cols);
-      if constexpr (!kGainBySolve) {
+      auto L_inv = ws.matrix(Workspace::kInverseFactor, BySolve ? 0 : cols);
+      if constexpr (!BySolve) {
         L_inv.setIdentity();
         llt.matrixL().solveInPlace(L_inv);
       }
@@ -110,7 +115,7 @@ struct SymmetricUpdate {
           const int r0 = b * block;
           const int rows = std::min(block, n - r0);
           auto W_rows = W.middleRows(r0, rows);
-          if constexpr (kGainBySolve) {
+          if constexpr (BySolve) {
             W_rows = PHt.middleRows(r0, rows);
             llt.matrixU().template solveInPlace<Eigen::OnTheRight>(W_rows);
           } else {
@@ -121,7 +126,7 @@ struct SymmetricUpdate {
       const int parts = parallel != nullptr && n >= detail::kParallelMinRows ? parallel->concurrency() : 1;
       runRanges(parallel, blocks, parts, rowBlocks);
       auto v = ws.vector(Workspace::kWhitenedInnovation, cols);
-      if constexpr (kGainBySolve) {
+      if constexpr (BySolve) {
         v = nu;
         llt.matrixL().solveInPlace(v);
       } else {
