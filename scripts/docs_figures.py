@@ -403,6 +403,15 @@ def forest_association_figures(out):
                         out[f"nnuv_{seed}"][key]["association"]["correct_fraction"]) for seed in seeds]
         figures[f"{key}_width_gain_median_pts"] = fixed(statistics.median(gains), 1)
         figures[f"{key}_width_gain_forests_better"] = f"{sum(g > 0 for g in gains)} of {len(gains)}"
+    # The default forest: the share taken right by each pipeline, and the thesis pipeline's
+    # errors against its run with ids.
+    ids, nn = out["defaultforest_ids"], out["defaultforest_nn"]
+    figures["default_seed"] = str(nn["seed"])
+    for key, _ in pipelines:
+        figures[f"default_{key}_pct"] = fixed(100 * nn[key]["association"]["correct_fraction"], 1)
+    for key, name in (("landmark_error", "el"), ("trajectory_error", "et")):
+        a, b = nn["with_width"][key], ids["with_width"][key]
+        figures[f"default_{name}_ratio"] = fixed(a / b, 2) if a is not None and b else "inf"
     return {
         "seeds": f"{seeds[0]}-{seeds[-1]}",
         "table": table(["forest seed", "sightings", "taken right (%)", "paired with another tree",
@@ -510,8 +519,12 @@ SOURCES = {
                  **{f"nnvisible_{k}": f"{{bin}}/forest_slam/forest_slam --seed {k} --association nn --no-occlusion "
                                       f"--json --svg-prefix ''" for k in range(1, 11)},
                  **{f"nnuv_{k}": f"{{bin}}/forest_slam/forest_slam --seed {k} --association nn --no-width-appearance "
-                                 f"--json --svg-prefix ''" for k in range(1, 11)}},
-        "quick": {**{f"ids_{k}": f"{{bin}}/forest_slam/forest_slam --seed {k} --frames 200 --json --svg-prefix ''"
+                                 f"--json --svg-prefix ''" for k in range(1, 11)},
+                 # The default forest (forest_slam's --seed default), the case issue 18 names.
+                 "defaultforest_ids": "{bin}/forest_slam/forest_slam --json --svg-prefix ''",
+                 "defaultforest_nn": "{bin}/forest_slam/forest_slam --association nn --json --svg-prefix ''"},
+        "quick": {"defaultforest_ids": "{bin}/forest_slam/forest_slam --frames 200 --json --svg-prefix ''",
+                  "defaultforest_nn": "{bin}/forest_slam/forest_slam --frames 200 --association nn --json --svg-prefix ''",**{f"ids_{k}": f"{{bin}}/forest_slam/forest_slam --seed {k} --frames 200 --json --svg-prefix ''"
                      for k in range(1, 3)},
                   **{f"nn_{k}": f"{{bin}}/forest_slam/forest_slam --seed {k} --frames 200 --association nn --json "
                                 f"--svg-prefix ''" for k in range(1, 3)},
