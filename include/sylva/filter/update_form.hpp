@@ -82,7 +82,7 @@ struct SymmetricUpdate {
   /// BM_PairedGain (bench/slam_step.cpp) times both from the same factor, paired: with SSE2's
   /// two-double packets (the baseline x86-64 build) the solve takes about half to two thirds
   /// of the product's time; with AVX's wider packets it takes longer, up to twice at large n
-  /// (docs/step-limit.md). The filter takes the product in every build for now: the solve
+  /// (scripts/step_limit_report.sh reports it). The filter takes the product in every build for now: the solve
   /// changes the last bits of a baseline build's results, which moves every published
   /// figure of the baseline build (and some decisions that flip on them), so it is to be
   /// switched on, for SSE2 only, together with a regeneration of all of them. The two agree
