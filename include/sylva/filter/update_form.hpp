@@ -79,14 +79,14 @@ struct SymmetricUpdate {
   /// How a batch (M = Eigen::Dynamic) forms W = P H^T L^-T:
   ///   BySolve = false: L^-1 explicitly (small, k x k), then the product P H^T (L^-1)^T;
   ///   BySolve = true:  a triangular solve with L^T on the right, in place on a copy of P H^T.
-  /// BM_PairedGain (bench/slam_step.cpp) times both from the same factor, paired: with SSE2's
-  /// two-double packets (the baseline x86-64 build) the solve takes about half to two thirds
-  /// of the product's time; with AVX's wider packets it takes longer, up to twice at large n
-  /// (scripts/step_limit_report.sh reports it). The filter takes the product in every build for now: the solve
-  /// changes the last bits of a baseline build's results, which moves every published
-  /// figure of the baseline build (and some decisions that flip on them), so it is to be
-  /// switched on, for SSE2 only, together with a regeneration of all of them. The two agree
-  /// to round-off (tests/filter/fusion.test.cpp).
+  /// BM_PairedGain (bench/slam_step.cpp; scripts/step_limit_report.sh reports it) times both
+  /// from the same factor, paired: with SSE2's two-double packets (the baseline x86-64 build)
+  /// the solve takes about half to two thirds of the product's time; with AVX's wider packets
+  /// it takes longer, up to twice at large n. The filter takes the product in every build for
+  /// now: the solve changes the last bits of a baseline build's results, which moves every
+  /// published figure of the baseline build (and some decisions that flip on them), so it is
+  /// to be switched on, for SSE2 only, together with a regeneration of all of them. The two
+  /// agree to round-off (tests/filter/fusion.test.cpp).
   static constexpr bool kGainBySolve = false;
 
   /// delta = W L^-1 nu with W = P H^T L^-T (L: the Cholesky factor of S), returning W for
