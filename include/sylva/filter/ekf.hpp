@@ -57,7 +57,10 @@
 #include "sylva/detail/model_traits.hpp"
 #include "sylva/diff/evaluate.hpp"
 #include "sylva/filter/compression_hooks.hpp"
+#include "sylva/filter/gauge_transport.hpp"
+#include "sylva/filter/invariant_transport.hpp"
 #include "sylva/filter/linearization.hpp"
+#include "sylva/filter/linearization_point.hpp"
 #include "sylva/filter/lower_covariance.hpp"
 #include "sylva/filter/slot_table.hpp"
 #include "sylva/filter/update_form.hpp"
@@ -72,102 +75,6 @@ struct Observation {
   Id id;
   Vec<Model::kDim> z;
   Gaussian<Model::kDim> noise;
-};
-
-/// Where the filter evaluates the Jacobians of its motion and measurement models.
-/// Predictions h(x) are always taken at the current estimate; only the Jacobians move.
-/// See docs/filter.md ("First-estimates Jacobians").
-enum class LinearizationPoint {
-  /// The textbook EKF: every Jacobian at the latest estimate.
-  kCurrentEstimate,
-  /// First-estimates Jacobians (FEJ; Huang, Mourikis and Roumeliotis 2010): measurement
-  /// Jacobians at each landmark's first estimate and the robot's latest prediction, the
-  /// transition Jacobian at the latest two predictions. The linearized system then keeps the
-  /// unobservable global pose unobservable, so heading confidence cannot come from
-  /// linearization alone (the textbook EKF's known overconfidence). Needs a robot with
-  /// `firstEstimatesJacobian(from, to)` (every `Pose2D` robot) or
-  /// `firstEstimatesJacobian(from, to, dt)` (ConstantVelocity3D).
-  kFirstEstimates,
-  /// A diagnostic for simulations: predict and update linearized about the TRUE state, which
-  /// the caller hands over (`setIdealRobot` before each predict and after it,
-  /// `setIdealLandmark` for each landmark it updates). Jacobians are taken there, and so are
-  /// the predictions, to first order: f(x_true) + F (x - x_true) and h(x_true) + H (x - x_true).
-  /// The filter is then the Kalman filter of the system linearized along the true trajectory,
-  /// free of linearization error however far the estimate strays; what inconsistency is left
-  /// comes from the models (noise, measurement model error, gating). Taking only the Jacobians
-  /// at the truth and the predictions at the estimate would not do: once the estimate strays
-  /// along a weakly observable direction (monocular scale), the two stop agreeing and the
-  /// filter diverges for that reason alone. add and reparametrize still use the estimate.
-  /// Linearizing at a state that was not handed over is refused (kInvalidArgument).
-  kIdeal,
-  /// The iterated EKF (Bell and Cathey 1993; MRPT's kfIKF): each update takes Gauss-Newton
-  /// steps, relinearizing the measurement models at the updated estimate until it stops moving
-  /// (`IteratedUpdate`), then updates the covariance with the Jacobians of the last iterate.
-  /// Worth most where one linearization is poor: a landmark whose depth is still a prior
-  /// (inverse-depth initialization). The motion keeps the textbook Jacobian.
-  kIterated,
-  /// The right-invariant EKF of planar SLAM (Barrau and Bonnabel 2015, "An EKF-SLAM
-  /// algorithm with consistency properties"): the error of the robot pose and of every
-  /// landmark position lives in the group SE_{1+k}(2), eta = chi chi_hat^-1, where the
-  /// linearized unobservable directions (a global translation and rotation) do not depend on
-  /// the estimate, so no update can gain information along them. The covariance stays stored
-  /// in the additive coordinates delta = T(x_hat) xi of the invariant error xi:
-  ///   delta_theta = xi_theta,   delta_p = xi_p + xi_theta J p_hat   (J: +90 degree rotation)
-  /// for the robot's position and each landmark's. Predict and the innovation are then the
-  /// textbook ones: for a motion that is a rigid increment in the robot frame (every Pose2D
-  /// robot) the textbook transition Jacobian is exactly T(x+) T(x)^-1, the invariant error
-  /// propagating with the identity. The update differs: its correction xi = T(x_hat)^-1 K nu
-  /// is applied through the group's exponential, p+ = R(xi_theta) p_hat + V(xi_theta) xi_p,
-  /// and the covariance is carried to the new estimate, P+ = M P M^T with
-  /// M = T(x+) T(x_hat)^-1 (a rank-2 correction, O(n^2)). Needs a robot that declares
-  /// kPlanarPosition and kPlanarHeading (every Pose2D robot) and landmarks that all declare
-  /// kPlanarPosition (Point2, TreeXYR); else setLinearizationPoint refuses it. See
-  /// docs/filter.md ("Invariant EKF").
-  kInvariant,
-  /// Observability-constrained updates for monocular SLAM: every Jacobian at the latest
-  /// estimate (as kCurrentEstimate), and after each update the covariance is carried from the
-  /// gauge directions at the estimate the update linearized at (x-) to those at the new
-  /// estimate (x+). N(x) is the n x 5 matrix of the directions in which moving, turning about
-  /// the vertical and scaling the world move the state (core/gauge.hpp). The update's
-  /// Jacobians satisfy H N(x-) = 0, so it adds no information along N(x-); without the
-  /// transport the next update, which sees N(x+), would find information there that no
-  /// measurement gave (the textbook EKF's over-confidence; Huang, Mourikis and Roumeliotis
-  /// 2010). The transport is P+ <- T P+ T^T with T = I + (N(x+) - N(x-)) A, where
-  /// A = (N_r^T N_r)^-1 N_r^T E_r reads the gauge part of a perturbation off the robot's
-  /// coordinates (N_r: the robot's rows of N(x-), E_r: selects them; `setGaugeInverse` can
-  /// make it the whole state's, GaugeInverse), so T N(x-) = N(x+) and
-  /// the information along N(x+) after the update is what the prior held along N(x-). This
-  /// keeps the invariant of Huang et al.'s observability-constrained EKF by moving the
-  /// covariance instead of the Jacobians; a motion model that commutes with the gauge (as
-  /// ConstantVelocity3D does) carries N(x) into N(f(x)) by its textbook Jacobian, so predict
-  /// needs nothing. Where the robot's rows are degenerate (a camera at rest) A uses all of N,
-  /// and where N^T N is singular too there is no transport. O(n^2) per update (a rank-10
-  /// correction), no allocation once the workspace has grown. Needs a robot and landmark types
-  /// that all declare `gaugeDirections` (ConstantVelocity3D; Point3, InverseDepth, TreeXYZR,
-  /// InverseDepthRadius); else setLinearizationPoint refuses it. A consistent monocular
-  /// filter keeps the map's position and scale uncertain: rules that judge a landmark's
-  /// marginal uncertainty (TreeLifeCycle's) should judge it given the robot
-  /// (landmarkCovarianceGivenRobot). See docs/filter.md ("Observability-constrained updates").
-  kObservabilityConstrained,
-};
-
-/// When the iterated update (LinearizationPoint::kIterated) stops: after `max_iterations`
-/// linearizations (the first at the prior estimate), or once no coordinate of the robot or of
-/// an observed landmark moved by more than `tolerance` prior standard deviations in a step.
-struct IteratedUpdate {
-  int max_iterations = 10;
-  double tolerance = 1e-3;
-};
-
-/// Where the observability-constrained update (LinearizationPoint::kObservabilityConstrained)
-/// reads the unobservable part of a correction: the left inverse A of the gauge directions N
-/// in its covariance transport T = I + dN A.
-enum class GaugeInverse {
-  /// A = (N_r^T N_r)^-1 N_r^T on the robot's coordinates alone (the default): the landmarks'
-  /// covariance moves with the robot's. Falls back to kWholeState for a camera at rest.
-  kRobot,
-  /// A = (N^T N)^-1 N^T over the whole state, every coordinate weighed alike.
-  kWholeState,
 };
 
 /// How `update(model, observations, fusion)` fuses a range of observations.
@@ -227,9 +134,6 @@ class BasicEkf {
   using Deferral = detail::Deferred<void, Robot_>;
   using VectorXd = detail::Deferred<Eigen::VectorXd, Robot_>;
   using MatrixXd = detail::Deferred<Eigen::MatrixXd, Robot_>;
-  using GaugeMatrix = detail::Deferred<Mat<kGaugeDim, kGaugeDim>, Robot_>;
-  using GaugeVector = detail::Deferred<Vec<kGaugeDim>, Robot_>;
-  using GaugeRows = detail::Deferred<Eigen::Matrix<double, kGaugeDim, Eigen::Dynamic>, Robot_>;
   using Vec2 = detail::Deferred<Vec<2>, Robot_>;
   using Workspace = detail::BatchWorkspace<Deferral>;
 
@@ -1600,87 +1504,47 @@ class BasicEkf {
   // ---------------------------------------------------------------- invariant EKF
 
   /// LinearizationPoint::kInvariant, before the mean is written: turns the additive
-  /// correction `delta` = K nu into the increment of the group's exponential. With
-  /// phi = delta_theta and, for the robot's position and each landmark's, xi_p = delta_p -
-  /// phi J p (the invariant error, T(x)^-1 delta), the posterior is
-  ///   p+ = R(phi) p + V(phi) xi_p,   V(phi) = [sin phi, -(1 - cos phi); 1 - cos phi, sin phi] / phi
-  /// (the exponential of SE_{1+k}(2)), and delta_p becomes p+ - p. Records c = J (p+ - p) per
-  /// position, the column of M = T(x+) T(x)^-1 = I + c e_theta^T. Grows its workspace before
-  /// the caller writes anything. A no-op in every other mode.
+  /// correction `delta` into the increment of the group's exponential, for the robot's
+  /// position and each landmark's (detail::InvariantTransport::retract). Grows its workspace
+  /// before the caller writes anything. A no-op in every other mode.
   template <typename Delta>
   void toInvariantIncrement(Delta& delta) {
     if constexpr (kInvariantApplies) {
       if (linearization_ != LinearizationPoint::kInvariant) return;
-      detail::growWorkspace(invariant_, 2 * static_cast<Eigen::Index>(dim()));
-      auto c = invariant_.head(dim());
-      c.setZero();
-      const double phi = delta[Robot::kPlanarHeading];
-      const double cos_phi = std::cos(phi);
-      const double sin_phi = std::sin(phi);
-      // sin(phi) / phi and (1 - cos(phi)) / phi, by their series near 0.
-      const bool small = std::abs(phi) < 1e-6;
-      const double a = small ? 1.0 - phi * phi / 6.0 : sin_phi / phi;
-      const double b = small ? 0.5 * phi : (1.0 - cos_phi) / phi;
-      const auto retract = [&](int o, const Vec2& p) {
-        const Vec2 xi(delta[o] + phi * p.y(), delta[o + 1] - phi * p.x());  // delta_p - phi J p
-        const Vec2 moved(cos_phi * p.x() - sin_phi * p.y() + a * xi.x() - b * xi.y(),
-                           sin_phi * p.x() + cos_phi * p.y() + b * xi.x() + a * xi.y());
-        const Vec2 step = moved - p;
-        delta.template segment<2>(o) = step;
-        c.template segment<2>(o) = Vec2(-step.y(), step.x());
-      };
-      retract(Robot::kPlanarPosition, robot_mean_.template segment<2>(Robot::kPlanarPosition));
+      invariant_.begin(dim(), delta[Robot::kPlanarHeading]);
+      invariant_.retract(delta, Robot::kPlanarPosition, robot_mean_.template segment<2>(Robot::kPlanarPosition));
       constexpr int kPositions[] = {Landmarks_::kPlanarPosition...};
       for (const LandmarkSlot& s : slots_.slots()) {
         const int o = s.offset + kPositions[s.type_index];
-        retract(o, mean_.template segment<2>(o));
+        invariant_.retract(delta, o, mean_.template segment<2>(o));
       }
     } else {
       (void)delta;
     }
   }
 
-  /// LinearizationPoint::kInvariant, after the covariance update: P <- M P M^T with
-  /// M = I + c e_theta^T (toInvariantIncrement), i.e. P + c a^T + a c^T for
-  /// a = P e_theta + (P_theta,theta / 2) c, on the lower triangle. O(n^2), no allocation.
+  /// LinearizationPoint::kInvariant, after the covariance update: P <- M P M^T
+  /// (detail::InvariantTransport::carry).
   void carryCovarianceToPosterior() {
     if constexpr (kInvariantApplies) {
       if (linearization_ != LinearizationPoint::kInvariant) return;
-      constexpr int h = Robot::kPlanarHeading;
-      const auto c = invariant_.head(dim());
-      auto a = invariant_.segment(dim(), dim());
-      for (int i = 0; i < dim(); ++i) a[i] = cov_(i, h);
-      a += (0.5 * cov_(h, h)) * c;
-      for (int j = 0; j < dim(); ++j)
-        cov_.stored().col(j).segment(j, dim() - j) += c.tail(dim() - j) * a[j] + a.tail(dim() - j) * c[j];
+      invariant_.carry(cov_, dim(), Robot::kPlanarHeading);
     }
   }
 
   // ---------------------------------------------------------------- observability constrained
 
-  /// Column block k (0: N(x-)^T, 1: (N(x+) - N(x-))^T, 2: B^T) of the gauge workspace, 5 x n.
-  Eigen::Map<GaugeRows> gaugeBlock(int k) {
-    return Eigen::Map<GaugeRows>(
-        gauge_.data() + static_cast<Eigen::Index>(k) * kGaugeDim * dim(), kGaugeDim, dim());
-  }
-
   /// Writes N(x)^T for x = mean_ + scale * delta into `Nt`, block by block.
   template <typename Delta, typename Out>
   void fillGaugeDirections(const Delta& delta, double scale, Out& Nt) const {
-    if constexpr (kObservabilityConstrainedApplies) {
-      if constexpr (kRobotOnManifold) {
-        const RobotState x = Robot::plus(robot_mean_, scale * delta.template head<kRobotDim>());
-        Nt.template leftCols<kRobotDim>() = (Robot::minusJacobian(x) * robot_.gaugeDirections(x)).transpose();
-      } else {
-        const RobotState x = robot_mean_ + scale * delta.template head<kRobotDim>();
-        Nt.template leftCols<kRobotDim>() = robot_.gaugeDirections(x).transpose();
-      }
-      for (const LandmarkSlot& s : slots_.slots()) fillSlotGauge(s, delta, scale, Nt, std::index_sequence_for<Landmarks_...>());
+    if constexpr (kRobotOnManifold) {
+      const RobotState x = Robot::plus(robot_mean_, scale * delta.template head<kRobotDim>());
+      Nt.template leftCols<kRobotDim>() = (Robot::minusJacobian(x) * robot_.gaugeDirections(x)).transpose();
     } else {
-      (void)delta;
-      (void)scale;
-      (void)Nt;
+      const RobotState x = robot_mean_ + scale * delta.template head<kRobotDim>();
+      Nt.template leftCols<kRobotDim>() = robot_.gaugeDirections(x).transpose();
     }
+    for (const LandmarkSlot& s : slots_.slots()) fillSlotGauge(s, delta, scale, Nt, std::index_sequence_for<Landmarks_...>());
   }
 
   template <typename Delta, typename Out, std::size_t... I>
@@ -1695,95 +1559,27 @@ class BasicEkf {
      ...);
   }
 
-  /// LinearizationPoint::kObservabilityConstrained, before the mean is written: N(x-) and
-  /// dN = N(x+) - N(x-) for x+ = x- + delta, and the left inverse A = G N_a^T of the transport,
-  /// G = (N_a^T N_a)^-1. N_a is the robot's rows of N (the gauge part of a perturbation read
-  /// off the robot's coordinates; it has full rank while the camera moves), or all of N where
-  /// the robot's rows are degenerate; with both degenerate there is no transport. Grows its
-  /// workspace before the caller writes anything. A no-op in every other mode.
+  /// LinearizationPoint::kObservabilityConstrained, before the mean is written: the gauge
+  /// directions at x- and x+ = x- + delta, and the transport's left inverse
+  /// (detail::GaugeTransport::prepare). Grows its workspace before the caller writes anything.
+  /// A no-op in every other mode.
   template <typename Delta>
   void prepareGaugeTransport(const Delta& delta) {
-    gauge_active_ = false;
+    gauge_.cancel();
     if constexpr (kObservabilityConstrainedApplies) {
       if (linearization_ != LinearizationPoint::kObservabilityConstrained) return;
-      const Eigen::Index needed = 3 * static_cast<Eigen::Index>(kGaugeDim) * dim();
-      detail::growWorkspace(gauge_, needed);
-      auto Nt = gaugeBlock(0);
-      auto dNt = gaugeBlock(1);
-      fillGaugeDirections(delta, 0.0, Nt);
-      fillGaugeDirections(delta, 1.0, dNt);
-      dNt -= Nt;
-      if (!dNt.allFinite()) return;
-      const auto invert = [this](const GaugeMatrix& NtN) {
-        const Eigen::LLT<GaugeMatrix> llt(NtN);
-        if (llt.info() != Eigen::Success) return false;
-        const GaugeVector d = llt.matrixLLT().diagonal();
-        if (!(d.minCoeff() > 1e-6 * d.maxCoeff())) return false;
-        gauge_inverse_ = llt.solve(GaugeMatrix::Identity());
-        return gauge_inverse_.allFinite();
-      };
-      const auto N_robot = Nt.template leftCols<kRobotDim>();
-      gauge_robot_only_ = gauge_inverse_choice_ == GaugeInverse::kRobot && invert(N_robot * N_robot.transpose());
-      if (!gauge_robot_only_) {
-        GaugeMatrix NtN = GaugeMatrix::Zero();
-        for (int i = 0; i < dim(); ++i) NtN.noalias() += Nt.col(i) * Nt.col(i).transpose();
-        if (!invert(NtN)) return;
-      }
-      gauge_active_ = true;
+      gauge_.prepare(dim(), gauge_inverse_choice_,
+                     [&](double scale, auto& Nt) { fillGaugeDirections(delta, scale, Nt); });
     } else {
       (void)delta;
     }
   }
 
-  /// LinearizationPoint::kObservabilityConstrained, after the covariance update:
-  /// P <- T P T^T with T = I + dN A (prepareGaugeTransport), so that T N(x-) = N(x+), on the
-  /// lower triangle:  B = P A^T,  C = A B,  B' = B + dN C / 2,  P <- P + dN B'^T + B' dN^T.
-  /// O(n^2) (the rank-10 correction; B costs O(n) when A reads the robot alone), no
-  /// allocation.
+  /// LinearizationPoint::kObservabilityConstrained, after the covariance update: P <- T P T^T
+  /// (detail::GaugeTransport::carry), where `prepareGaugeTransport` found a transport.
   void carryCovarianceAlongGauge() {
     if constexpr (kObservabilityConstrainedApplies) {  // else nothing to carry, and nothing compiled
-      if (!gauge_active_) return;
-      gauge_active_ = false;
-      const auto Nt = gaugeBlock(0);
-      const auto dNt = gaugeBlock(1);
-      auto Bt = gaugeBlock(2);
-      // Bt = N_a^T P (5 x n) from the lower triangle.
-      if (gauge_robot_only_) {
-        const Mat<kGaugeDim, kRobotDim> N_robot = Nt.template leftCols<kRobotDim>();
-        Bt.template leftCols<kRobotDim>() = N_robot * cov_.template block<kRobotDim, kRobotDim>(0, 0);
-        for (int j = kRobotDim; j < dim(); ++j) {
-          const Vec<kRobotDim> p = cov_.stored().row(j).template head<kRobotDim>().transpose();  // P(robot, j)
-          Bt.col(j) = N_robot * p;
-        }
-      } else {
-        // Each stored P(i, j), i >= j, adds N_i P(i, j) to column j and, below the diagonal,
-        // N_j P(i, j) to column i.
-        Bt.setZero();
-        for (int j = 0; j < dim(); ++j) {
-          const auto col = cov_.stored().col(j).segment(j, dim() - j);
-          Bt.col(j).noalias() += Nt.middleCols(j, dim() - j) * col;
-          Bt.middleCols(j + 1, dim() - j - 1).noalias() += Nt.col(j) * col.tail(dim() - j - 1).transpose();
-        }
-      }
-      // B^T = G N_a^T P, and C = A P A^T = G N_a^T P N_a G.
-      for (int j = 0; j < dim(); ++j) {
-        const GaugeVector b = gauge_inverse_ * Bt.col(j);
-        Bt.col(j) = b;
-      }
-      GaugeMatrix NtB = GaugeMatrix::Zero();
-      const int rows = gauge_robot_only_ ? kRobotDim : dim();
-      for (int i = 0; i < rows; ++i) NtB.noalias() += Nt.col(i) * Bt.col(i).transpose();
-      const GaugeMatrix C = gauge_inverse_ * NtB;
-      const GaugeMatrix C_half = 0.25 * (C + C.transpose());
-      for (int j = 0; j < dim(); ++j) {
-        const GaugeVector b = Bt.col(j) + C_half * dNt.col(j);
-        Bt.col(j) = b;
-      }
-      for (int j = 0; j < dim(); ++j) {
-        auto col = cov_.stored().col(j).segment(j, dim() - j);
-        col.noalias() += dNt.middleCols(j, dim() - j).transpose() * Bt.col(j);
-        col.noalias() += Bt.middleCols(j, dim() - j).transpose() * dNt.col(j);
-      }
+      gauge_.carry(cov_.stored(), dim(), cov_.template block<kRobotDim, kRobotDim>(0, 0));
     }
   }
 
@@ -1891,12 +1687,8 @@ class BasicEkf {
   detail::SlotTable slots_;  ///< where each landmark's block lies
   VectorXd workspace_a_;
   VectorXd delta_;
-  VectorXd invariant_;  ///< c and a of the invariant EKF's covariance transport (2n)
-  /// N(x-)^T, (N(x+) - N(x-))^T and B^T of the observability-constrained transport (3 x 5n).
-  VectorXd gauge_;
-  GaugeMatrix gauge_inverse_ = GaugeMatrix::Zero();
-  bool gauge_active_ = false;      ///< the next covariance update is followed by the transport
-  bool gauge_robot_only_ = false;  ///< A reads the robot's coordinates alone
+  detail::InvariantTransport<> invariant_;  ///< the invariant EKF's correction and transport
+  detail::GaugeTransport<kRobotDim> gauge_;  ///< the observability-constrained transport
   GaugeInverse gauge_inverse_choice_ = GaugeInverse::kRobot;
 
   Workspace batch_;
