@@ -10,6 +10,8 @@ Inputs (Google Benchmark JSON unless said otherwise):
   --peers-baseline FILE..  bench_peers_baseline, the same for sylva built for baseline x86-64
   --forest FILE          bench_forest_slam: the monocular frame split (optional)
   --build-times FILE...  scripts/measure_build_time.sh's JSON, one per compiler (optional)
+  --build-time-reference FILE  the same script's JSON for the tree issue 18 was filed against
+                         (`--tree REV`), g++, built in the same sitting (optional)
 Outputs: --out (Markdown), --plot (SVG, drawn by gnuplot).
 
 Every time is the median over the benchmark's repetitions (CPU time). Ratios pair figures of
@@ -192,6 +194,7 @@ def main():
     ap.add_argument("--peers-baseline", nargs="*", default=[])
     ap.add_argument("--forest")
     ap.add_argument("--build-times", nargs="*", default=[])
+    ap.add_argument("--build-time-reference", default=None)
     ap.add_argument("--out", required=True)
     ap.add_argument("--plot", required=True)
     ap.add_argument("--command", default="bash scripts/run_benchmarks.sh")
@@ -474,17 +477,34 @@ def main():
                       f"{sum(o['seconds'] for o in bt['objects']):.0f} s | {len(bt['objects'])} | "
                       f"`{slow['object']}`, {slow['seconds']:.0f} s |")
         gxx = [bt for bt in builds if bt["compiler"].startswith(("g++", "c++"))]
+        reference = None
+        if a.build_time_reference and os.path.exists(a.build_time_reference):
+            reference = json.load(open(a.build_time_reference, encoding="utf-8"))
         if gxx:
-            # Issue 18's reference: the g++ build docs/benchmarks.md measured when the issue was
-            # filed, with this script on this machine. The target asks for the same sitting; this
-            # page compares with the recorded figure, from another sitting.
-            reference_s, target = 928.0, 0.4
+            target = 0.4
             wall = gxx[0]["wall_seconds"]
-            outcome = "met" if wall <= target * reference_s else "**not met**"
-            md.append(f"\nIssue 18 asks the g++ build to take at most {target:.0%} of the {reference_s:.0f} s "
-                      f"recorded when it was filed, {target * reference_s:.0f} s: this run's g++ build took "
-                      f"{wall / reference_s:.2f}x that figure, {outcome} (the reference is from another sitting, "
-                      "and the tests have grown since).")
+            if reference is not None:
+                # Issue 18's criterion as it asks: the tree it was filed against, built by the same
+                # script in the same sitting.
+                ref_s = reference["wall_seconds"]
+                outcome = "met" if wall <= target * ref_s else "**not met**"
+                md.append(f"\nIssue 18 asks the g++ build to take at most {target:.0%} of the build of the tree it was "
+                          f"filed against, by the same script in the same sitting: commit "
+                          f"`{reference['commit'][:7]}` took **{ref_s:.0f} s** "
+                          f"({sum(o['seconds'] for o in reference['objects']):.0f} s compiling, "
+                          f"{len(reference['objects'])} objects, {reference['compiler']}), so the target is "
+                          f"{target * ref_s:.0f} s; this run's g++ build took {wall / ref_s:.2f}x the reference, "
+                          f"{outcome}.")
+            else:
+                # Without a reference build: the figure docs/benchmarks.md recorded when the issue
+                # was filed (commit 90b83a7), from another sitting.
+                reference_s = 928.0
+                outcome = "met" if wall <= target * reference_s else "**not met**"
+                md.append(f"\nIssue 18 asks the g++ build to take at most {target:.0%} of the {reference_s:.0f} s "
+                          f"recorded when it was filed, {target * reference_s:.0f} s: this run's g++ build took "
+                          f"{wall / reference_s:.2f}x that figure, {outcome} (the reference is from another sitting, "
+                          "and the tests have grown since; `BUILD_TIME_REFERENCE` in run_benchmarks.sh builds it "
+                          "in the same sitting).")
         md.append("\nThe ten slowest objects of the first build:\n")
         md.append("| object | seconds |\n|---|---|")
         for o in builds[0]["objects"][:10]:
