@@ -1,5 +1,5 @@
 #pragma once
-// Number formatting shared by the example programs' text reports.
+// Number formatting of the examples' picture captions (their reports: report.hpp).
 
 #include <iomanip>
 #include <sstream>
@@ -7,7 +7,7 @@
 
 namespace sylva_examples {
 
-/// `v` with `digits` decimals (std::fixed), the way the reports print their figures.
+/// `v` with `digits` decimals (std::fixed).
 inline std::string fixed(double v, int digits) {
   std::ostringstream os;
   os << std::fixed << std::setprecision(digits) << v;

@@ -60,6 +60,7 @@
 #include <sylva/eval.hpp>
 #include <sylva/sim/forest_scenario.hpp>
 
+#include "../common/report.hpp"
 #include "forest_run.hpp"
 #include "forest_svg.hpp"
 #include "monocular_tree_slam.hpp"
@@ -197,19 +198,7 @@ int runOnRecording(const forest_slam::Recording& recording, const TreeSlamOption
                   {"ambiguous", totals.ambiguous}, {"rejected", totals.rejected},
                   {"trees_in_euclidean_form", e.trees.size()}};
   }
-  if (json) {
-    std::cout << out.dump(2) << "\n";
-  } else {
-    std::printf("forest_slam on a recording: %zu frames, %zu detections, association by %s\n", recording.frames.size(),
-                detections, out["association"].get<std::string>().c_str());
-    for (const PipelineRun& p : kPipelines) {
-      const auto& r = out[p.key];
-      std::printf("  %-18s fused %6d, trees added %4d, ambiguous %4d, refused %4d, mapped in Euclidean form %4d\n", p.title,
-                  r["fused"].get<int>(), r["added"].get<int>(), r["ambiguous"].get<int>(), r["rejected"].get<int>(),
-                  r["trees_in_euclidean_form"].get<int>());
-    }
-    if (!csv_prefix.empty()) std::printf("estimates: %s_<pipeline>_trajectory.csv and _map.csv\n", csv_prefix.c_str());
-  }
+  sylva_examples::writeResult(std::cout, json, "forest_slam on a recording: the three pipelines", out);
   return 0;
 }
 
@@ -364,62 +353,20 @@ int main(int argc, char** argv) {
 
     std::size_t observations = 0;
     for (const auto& o : scenario.observations) observations += o.size();
-    if (json) {
-      nlohmann::json out;
-      out["seed"] = seed;
-      out["trees"] = scenario.trees.size();
-      out["frames"] = max_frames > 0 ? std::min<std::size_t>(max_frames, scenario.frames.size()) : scenario.frames.size();
-      out["mean_trees_per_frame"] = static_cast<double>(observations) / scenario.frames.size();
-      for (std::size_t i = 0; i < results.size(); ++i) {
-        out[kPipelines[i].key] = toJson(results[i]);
-        if (slam_options.association != sylva::slam::TrunkAssociation::kKnownIds)
-          out[kPipelines[i].key]["association"] = associationJson(results[i]);
-      }
-      std::cout << out.dump(2) << "\n";
-    } else {
-      std::printf("forest_slam: %zu trees, %zu frames, %.1f trees measured per frame (seed %llu, occlusion %s)\n\n",
-                  scenario.trees.size(), scenario.frames.size(), static_cast<double>(observations) / scenario.frames.size(),
-                  static_cast<unsigned long long>(seed), no_occlusion ? "off" : "on");
-      std::printf("%-36s", "");
-      for (const PipelineRun& p : kPipelines) std::printf(" %16s", p.title);
-      std::printf("\n");
-      const auto row = [&](const char* label, auto value, const char* fmt) {
-        std::printf("%-36s", label);
-        for (const RunResult& r : results) {
-          const double v = value(r);
-          char cell[32];
-          std::snprintf(cell, sizeof cell, fmt, v);
-          std::printf(" %16s", std::isfinite(v) ? cell : "-");
-        }
-        std::printf("\n");
-      };
-      row("landmark error e_l (m^2, lap 1)", [](const RunResult& r) { return r.landmark_error; }, "%.4f");
-      row("trajectory error e_t (m^2, last lap)", [](const RunResult& r) { return r.trajectory_error; }, "%.4f");
-      std::printf("%-36s", "converged (e_l < 10, e_t < 3)");
-      for (const RunResult& r : results) std::printf(" %16s", r.converged ? "yes" : "no");
-      std::printf("\n");
-      row("radius RMS error (m, XYZ-R trees)", [](const RunResult& r) { return r.radius_rmse_m; }, "%.4f");
-      row("mean true radius (m, same trees)", [](const RunResult& r) { return r.mean_true_radius_m; }, "%.4f");
-      row("trees XYZ-R at the end", [](const RunResult& r) { return double(r.by_type[2]); }, "%.0f");
-      row("trees XYZ at the end", [](const RunResult& r) { return double(r.by_type[1]); }, "%.0f");
-      row("trees inverse depth (or IDR) at end", [](const RunResult& r) { return double(r.by_type[0] + r.by_type[3]); }, "%.0f");
-      row("observations refused", [](const RunResult& r) { return double(r.rejected); }, "%.0f");
-      if (slam_options.association != sylva::slam::TrunkAssociation::kKnownIds) {
-        row("association: sightings taken right (%)", [](const RunResult& r) { return 100.0 * r.association.correctFraction(); }, "%.2f");
-        row("association: paired with another tree", [](const RunResult& r) { return double(r.association.paired_wrong); }, "%.0f");
-        row("  of them, own tree not yet mapped", [](const RunResult& r) { return double(r.association.paired_before_own); }, "%.0f");
-        row("association: duplicate trees", [](const RunResult& r) { return double(r.association.duplicates); }, "%.0f");
-        row("association: ambiguous, dropped", [](const RunResult& r) { return double(r.association.ambiguous); }, "%.0f");
-      }
-      row("run time (s)", [](const RunResult& r) { return r.runtime_s; }, "%.2f");
-      if (!svg_prefix.empty()) {
-        std::printf("\nmaps:");
-        for (const PipelineRun& p : kPipelines) std::printf(" %s", svg_for(p.key).c_str());
-        std::printf("\n");
-      }
-      for (std::size_t i = 0; i < results.size(); ++i)
-        if (!results[i].failure.empty()) std::cout << kPipelines[i].key << ": no alignment: " << results[i].failure << "\n";
+    nlohmann::json out;
+    out["seed"] = seed;
+    out["trees"] = scenario.trees.size();
+    out["frames"] = max_frames > 0 ? std::min<std::size_t>(max_frames, scenario.frames.size()) : scenario.frames.size();
+    out["mean_trees_per_frame"] = static_cast<double>(observations) / scenario.frames.size();
+    for (std::size_t i = 0; i < results.size(); ++i) {
+      out[kPipelines[i].key] = toJson(results[i]);
+      if (slam_options.association != sylva::slam::TrunkAssociation::kKnownIds)
+        out[kPipelines[i].key]["association"] = associationJson(results[i]);
     }
+    sylva_examples::writeResult(std::cout, json,
+                                "forest_slam: monocular EKF-SLAM in a simulated forest, with and without the tree-width "
+                                "sensor",
+                                out);
   } catch (const sylva::Error& e) {
     std::cerr << "forest_slam: " << e.what() << "\n";
     return 1;

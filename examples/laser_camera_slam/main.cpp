@@ -27,9 +27,7 @@
 // same output, bit for bit. Run `laser_camera_slam --help` for the flags.
 
 #include <cstdint>
-#include <iomanip>
 #include <iostream>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -39,6 +37,7 @@
 #include "../range_bearing_slam/svg_map.hpp"
 #include "run.hpp"
 #include "sigma_plot.hpp"
+#include "../common/report.hpp"
 #include "../common/text.hpp"
 
 namespace {
@@ -135,83 +134,46 @@ int run(const Options& o, int seeds, bool json, const std::string& svg_prefix) {
     met += done ? 1 : 0;
     if (s == 0 && !svg_prefix.empty()) writePictures(svg_prefix, sim, results);
 
-    if (json) {
-      nlohmann::json one;
-      one["seed"] = os.seed;
-      one["steps"] = sim.steps.size();
-      for (const auto& r : results) one[variantName(r.variant)] = summary(r);
-      one["fused_beats_corners"] = done;
-      if (s == 0) {
-        long long corners = 0, lc = 0, lines = 0;
-        for (const auto& d : sim.steps) {
-          corners += static_cast<long long>(d.corners.size());
-          lc += static_cast<long long>(d.laser_camera.size());
-          lines += d.lines_detected;
-        }
-        const double n = static_cast<double>(sim.steps.size());
-        one["detections_per_step"] = {{"laser_corners", corners / n}, {"camera_lines", lines / n}, {"laser_camera", lc / n}};
-        nlohmann::json status;
-        for (int k = 0; k < 6; ++k)
-          status[sylva::describe(static_cast<sylva::LaserCameraStatus>(k))] = sim.status_counts[static_cast<std::size_t>(k)];
-        one["laser_camera_status"] = status;
-        one["camera_bearing_bias_rms_deg"] = {{"uncalibrated", sim.uncalibrated_bearing_rms_rad / kRadPerDeg},
-                                              {"calibrated", sim.calibrated_bearing_rms_rad / kRadPerDeg}};
-      }
-      j["runs"].push_back(one);
-      continue;
-    }
+    nlohmann::json one;
+    one["seed"] = os.seed;
+    one["steps"] = sim.steps.size();
+    for (const auto& r : results) one[variantName(r.variant)] = summary(r);
+    one["fused_beats_corners"] = done;
     if (s == 0) {
-      std::cout << "laser_camera_slam: seed " << os.seed << ", " << sim.steps.size() << " steps ("
-                << fixed(sim.steps.size() * o.speed_mps * sim.dt_s, 1) << " m), world: " << sim.world.edges.size()
-                << " vertical edges (" << sim.world.doors << " doors, " << sim.world.posters << " posters, "
-                << sim.world.pillars << " pillars)\n";
-      std::cout << "camera bearing bias (RMS over the view): " << fixed(sim.uncalibrated_bearing_rms_rad / kRadPerDeg, 3)
-                << " deg uncalibrated, " << fixed(sim.calibrated_bearing_rms_rad / kRadPerDeg, 3) << " deg after the "
-                << (o.calibrate ? "calibration curve" : "(no) calibration") << "\n";
-      std::cout << "laser-camera sensor:";
-      for (int k = 0; k < 6; ++k)
-        std::cout << (k ? "; " : " ") << sylva::describe(static_cast<sylva::LaserCameraStatus>(k)) << ": "
-                  << sim.status_counts[static_cast<std::size_t>(k)];
-      std::cout << "\n\nlandmark counts over time (as Fig. 3.12): features observed in the step / landmarks in the map\n";
-      std::cout << "  step   time_s  corners  lines  laser-cam | map: corners  laser-cam  fused\n";
-      const std::size_t n = sim.steps.size();
-      for (std::size_t k = 0; k < n; k += std::max<std::size_t>(1, n / 20)) {
-        const auto& d = sim.steps[k];
-        std::cout << std::setw(6) << k + 1 << std::setw(9) << fixed(sim.dt_s * (k + 1), 1) << std::setw(9)
-                  << d.corners.size() << std::setw(7) << d.lines_detected << std::setw(11) << d.laser_camera.size()
-                  << " | " << std::setw(11) << results[0].records[k].map_size << std::setw(11)
-                  << results[1].records[k].map_size << std::setw(7) << results[2].records[k].map_size << "\n";
+      long long corners = 0, lc = 0, lines = 0;
+      for (const auto& d : sim.steps) {
+        corners += static_cast<long long>(d.corners.size());
+        lc += static_cast<long long>(d.laser_camera.size());
+        lines += d.lines_detected;
       }
-      std::cout << "\n  variant          landmarks  spurious  landmark_rmse_m  final_pos_err_m  final_head_err_deg  "
-                   "nees_mean  nees_in_95%  wrong_pairs\n";
-      for (const auto& r : results)
-        std::cout << "  " << std::left << std::setw(15) << variantName(r.variant) << std::right << std::setw(11)
-                  << r.landmarks << std::setw(10) << r.spurious << std::setw(17) << fixed(r.landmark_rmse_m, 4)
-                  << std::setw(17) << fixed(r.final_position_error_m, 4) << std::setw(20)
-                  << fixed(r.final_heading_error_rad / kRadPerDeg, 3) << std::setw(11) << fixed(r.nees_mean, 2)
-                  << std::setw(13) << fixed(100.0 * r.nees_fraction_inside, 1) << std::setw(13) << r.wrong << "\n";
-      std::cout << "  fused has more landmarks and a lower final error than laser corners: " << (done ? "yes" : "NO")
-                << "\n";
-      if (seeds > 1)
-        std::cout << "\n  seed  corners: landmarks final_err_m | laser_camera: landmarks final_err_m | fused: landmarks "
-                     "final_err_m | fused beats corners\n";
+      const double n = static_cast<double>(sim.steps.size());
+      one["world"] = {{"vertical_edges", sim.world.edges.size()}, {"doors", sim.world.doors},
+                      {"posters", sim.world.posters}, {"pillars", sim.world.pillars}};
+      one["detections_per_step"] = {{"laser_corners", corners / n}, {"camera_lines", lines / n}, {"laser_camera", lc / n}};
+      nlohmann::json status;
+      for (int k = 0; k < 6; ++k)
+        status[sylva::describe(static_cast<sylva::LaserCameraStatus>(k))] = sim.status_counts[static_cast<std::size_t>(k)];
+      one["laser_camera_status"] = status;
+      one["camera_bearing_bias_rms_deg"] = {{"uncalibrated", sim.uncalibrated_bearing_rms_rad / kRadPerDeg},
+                                            {"calibrated", sim.calibrated_bearing_rms_rad / kRadPerDeg}};
+      // As Fig. 3.12: the features observed in a step and the landmarks in each variant's map.
+      nlohmann::json counts = nlohmann::json::array();
+      for (std::size_t k = 0; k < sim.steps.size(); k += std::max<std::size_t>(1, sim.steps.size() / 20))
+        counts.push_back({{"step", k + 1}, {"time_s", sim.dt_s * static_cast<double>(k + 1)},
+                          {"seen_corners", sim.steps[k].corners.size()}, {"seen_lines", sim.steps[k].lines_detected},
+                          {"seen_laser_camera", sim.steps[k].laser_camera.size()},
+                          {"map_corners", results[0].records[k].map_size},
+                          {"map_laser_camera", results[1].records[k].map_size},
+                          {"map_fused", results[2].records[k].map_size}});
+      one["landmarks_over_time"] = counts;
     }
-    if (seeds > 1)
-      std::cout << std::setw(6) << os.seed << std::setw(20) << results[0].landmarks << std::setw(12)
-                << fixed(results[0].final_position_error_m, 4) << std::setw(25) << results[1].landmarks
-                << std::setw(12) << fixed(results[1].final_position_error_m, 4) << std::setw(18)
-                << results[2].landmarks << std::setw(12) << fixed(results[2].final_position_error_m, 4)
-                << std::setw(8) << (done ? "yes" : "NO") << "\n";
+    j["runs"].push_back(one);
   }
-  if (json) {
-    j["seeds_where_fused_beats_corners"] = met;
-    j["seeds"] = seeds;
-    std::cout << j.dump(2) << "\n";
-  } else {
-    if (seeds > 1) std::cout << "  fused beats laser corners on " << met << " of " << seeds << " seeds\n";
-    if (!svg_prefix.empty())
-      std::cout << "pictures: " << svg_prefix << "map.svg, " << svg_prefix << "sigma.svg\n";
-  }
+  j["seeds_where_fused_beats_corners"] = met;
+  j["seeds"] = seeds;
+  sylva_examples::writeResult(std::cout, json,
+                              "laser_camera_slam: laser corners vs laser-camera landmarks vs both (multisensor thesis "
+                              "Sec. 3.3-3.5)", j);
   return 0;
 }
 

@@ -32,7 +32,6 @@
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
-#include <iomanip>
 #include <iostream>
 #include <map>
 #include <sstream>
@@ -49,6 +48,7 @@
 #include <sylva/sim/laser_scanner_2d.hpp>
 
 #include "../common/cli_checks.hpp"
+#include "../common/report.hpp"
 #include "../common/text.hpp"
 #include "cases.hpp"
 #include "evaluation.hpp"
@@ -633,49 +633,31 @@ int runReal(const Options& o) {
   const double background_rate =
       r.background_readings ? static_cast<double>(r.detected_on_background) / r.background_readings : 0.0;
   const double detections_per_scan = static_cast<double>(r.detections) / r.pairs;
-  if (o.json) {
-    json j;
-    j["data"] = r.dir;
-    j["ground_truth"] = false;
-    j["scans"] = r.scans;
-    j["scan_pairs"] = r.pairs;
-    j["dt_s"] = r.dt_s;
-    j["detections"] = r.detections;
-    j["detections_per_scan_mean"] = detections_per_scan;
-    j["detections_per_scan_max"] = r.max_detections;
-    j["scans_with_detections"] = r.scans_with_detections;
-    j["confirmed_tracks"] = r.confirmed_tracks;
-    j["active_tracks_per_scan_mean"] = r.mean_active_tracks;
-    j["active_tracks_per_scan_max"] = r.max_active_tracks;
-    j["detected_readings"] = r.detected_readings;
-    j["background_readings"] = r.background_readings;
-    j["detected_on_background"] = r.detected_on_background;
-    j["background_false_detection_rate"] = background_rate;
-    j["objects_on_background"] = r.objects_on_background;
-    j["detections_per_scan"] = r.detections_per_scan;
-    j["active_tracks_per_scan"] = r.active_tracks_per_scan;
-    std::cout << json{{"real", j}}.dump(2) << "\n";
-    return 0;
-  }
-  std::cout << "moving_objects --real: leg_tracker recording in " << r.dir << "\n"
-            << "  " << r.scans << " scans; each compared with the one " << o.real_step << " earlier (mean dt "
-            << fixed(r.dt_s, 3) << " s): " << r.pairs << " scan pairs\n"
-            << "  readings: " << fixed(100.0 * r.no_return_readings / r.readings, 1) << " % no return, "
-            << fixed(100.0 * r.invalid_readings / r.readings, 2) << " % invalid (NaN)\n"
-            << "  THERE IS NO GROUND TRUTH in this recording: the figures below are counts and a plausibility check.\n"
-            << "  detections (objects) per scan: mean " << fixed(detections_per_scan, 2) << ", max " << r.max_detections
-            << "; scans with a detection " << r.scans_with_detections << " of " << r.pairs << "\n"
-            << "  tracks (leg groups, nearest neighbour): " << r.confirmed_tracks << " confirmed; active per scan mean "
-            << fixed(r.mean_active_tracks, 2) << ", max " << r.max_active_tracks << "\n"
-            << "  plausibility: of " << r.background_readings << " readings on the static background (within "
-            << kBackgroundTolerance_m << " m of the beam's 75th-percentile range), " << r.detected_on_background
-            << " were reported moving: " << fixed(100.0 * background_rate, 3) << " %; " << r.objects_on_background
-            << " of " << r.detections << " objects lie mostly on the background\n";
-  if (!o.svg_prefix.empty()) std::cout << "  picture: " << pathWith(o.svg_prefix, "_real.svg") << "\n";
-  std::cout << "  detections per scan:";
-  for (std::size_t k = 0; k < r.detections_per_scan.size(); ++k)
-    std::cout << (k % 40 == 0 ? "\n   " : " ") << r.detections_per_scan[k];
-  std::cout << "\n";
+  json j;
+  j["data"] = r.dir;
+  j["ground_truth"] = false;
+  j["note"] = "no ground truth in this recording: the figures are counts and a plausibility check";
+  j["scans"] = r.scans;
+  j["scan_pairs"] = r.pairs;
+  j["dt_s"] = r.dt_s;
+  j["no_return_fraction"] = static_cast<double>(r.no_return_readings) / r.readings;
+  j["invalid_fraction"] = static_cast<double>(r.invalid_readings) / r.readings;
+  j["detections"] = r.detections;
+  j["detections_per_scan_mean"] = detections_per_scan;
+  j["detections_per_scan_max"] = r.max_detections;
+  j["scans_with_detections"] = r.scans_with_detections;
+  j["confirmed_tracks"] = r.confirmed_tracks;
+  j["active_tracks_per_scan_mean"] = r.mean_active_tracks;
+  j["active_tracks_per_scan_max"] = r.max_active_tracks;
+  j["detected_readings"] = r.detected_readings;
+  j["background_readings"] = r.background_readings;
+  j["background_tolerance_m"] = kBackgroundTolerance_m;
+  j["detected_on_background"] = r.detected_on_background;
+  j["background_false_detection_rate"] = background_rate;
+  j["objects_on_background"] = r.objects_on_background;
+  j["detections_per_scan"] = r.detections_per_scan;
+  j["active_tracks_per_scan"] = r.active_tracks_per_scan;
+  sylva_examples::writeResult(std::cout, o.json, "moving_objects --real: the leg_tracker recording", json{{"real", j}});
   return 0;
 }
 
@@ -694,185 +676,98 @@ int runSimulation(const Options& o) {
   if (!o.no_slam) slam = runSlamStudy(o, pathWith(o.svg_prefix, "_slam.svg"));
   const auto [nees_lo, nees_hi] = sylva::averageChiSquareBounds(3, 1, 0.95);
 
-  if (o.json) {
-    json j;
-    j["seed"] = o.seed;
-    json per_scan = json::array();
-    for (const SceneRow& row : scene.rows) {
-      json r = scoresJson(row.scores);
-      r["scan"] = row.scan;
-      r["time_s"] = row.time_s;
-      r["objects"] = row.objects;
-      r["hull_error_m"] = std::isnan(row.hull_error_m) ? json(nullptr) : json(row.hull_error_m);
-      r["box_error_m"] = std::isnan(row.box_error_m) ? json(nullptr) : json(row.box_error_m);
-      per_scan.push_back(r);
-    }
-    j["default_scene"] = {{"scans", scene.rows.size() + 1},
-                          {"dt_s", dt},
-                          {"points", scoresJson(scene.pooled)},
-                          {"precision", scene.pooled.precision()},
-                          {"recall", scene.pooled.recall()},
-                          {"mean_per_scan_precision", scene.mean_precision},
-                          {"mean_per_scan_recall", scene.mean_recall},
-                          {"objects", scene.objects},
-                          {"false_objects", scene.false_objects},
-                          {"position_error_m",
-                           {{"hull_centroid_rms", rms(scene.hull_sq, scene.located)},
-                            {"box_centre_rms", rms(scene.box_sq, scene.located)},
-                            {"objects", scene.located},
-                            {"legs",
-                             {{"hull_centroid_rms", rms(scene.leg_hull_sq, scene.legs_located)},
-                              {"box_centre_rms", rms(scene.leg_box_sq, scene.legs_located)},
-                              {"objects", scene.legs_located}}},
-                            {"cart",
-                             {{"hull_centroid_rms", rms(scene.hull_sq - scene.leg_hull_sq, scene.located - scene.legs_located)},
-                              {"box_centre_rms", rms(scene.box_sq - scene.leg_box_sq, scene.located - scene.legs_located)},
-                              {"objects", scene.located - scene.legs_located}}}}},
-                          {"torso_estimates", scene.torsos},
-                          {"confirmed_tracks", scene.confirmed_tracks},
-                          {"per_scan", per_scan}};
-    json vmin;
-    for (const double r : {1.0, 2.0, 4.0, 8.0})
-      vmin[fixed(r, 0) + "m"] = sylva::laser::minDetectableSpeed(g, detector.options().matching, r, dt);
-    j["min_detectable_speed_mps"] = vmin;
-    json jc = json::array();
-    for (const CaseReport& c : cases)
-      jc.push_back({{"case", c.number}, {"name", c.name}, {"recovered_in_full", c.full},
-                    {"object_readings", c.object_readings}, {"found", c.scores.on_moving_found},
-                    {"precision", c.scores.precision()}, {"initial_m_readings", c.initial_m_readings},
-                    {"joined_from_a", c.joined_a}, {"joined_from_o", c.joined_o}, {"algorithm_4", c.replaced}});
-    j["cases"] = jc;
-    j["cases_detected"] = cases_detected;
-    j["static_check"] = {{"scans", still.scans},
-                         {"false_objects", still.false_objects},
-                         {"false_objects_per_scan", static_cast<double>(still.false_objects) / still.scans},
-                         {"scans_with_false_objects", still.scans_with_false},
-                         {"false_readings", still.false_readings},
-                         {"valid_readings", still.valid_readings}};
-    if (!o.no_slam) {
-      const auto rmse = [&](std::size_t v) { return rms(slam.variants[v].pole_sq, slam.variants[v].poles); };
-      j["slam_landmark_rmse_m"] = {{"without_removal", rmse(0)}, {"with_removal", rmse(1)},
-                                   {"with_removal_and_memory", rmse(2)}};
-      json variants = json::array();
-      for (const VariantStats& v : slam.variants) {
-        variants.push_back({{"name", v.name},
-                            {"landmark_rmse_m", rms(v.pole_sq, v.poles)},
-                            {"pole_landmarks_per_run", static_cast<double>(v.poles) / slam.seeds},
-                            {"duplicate_pole_landmarks_per_run", static_cast<double>(v.duplicates) / slam.seeds},
-                            {"spurious_landmarks_per_run", static_cast<double>(v.spurious) / slam.seeds},
-                            {"robot_nees_mean", v.nees_sum / slam.seeds},
-                            {"robot_nees_fraction_inside_95", static_cast<double>(v.nees_inside) / v.nees_steps},
-                            {"position_rmse_m", std::sqrt(v.position_sq / slam.seeds)},
-                            {"features_on_legs", v.features_on_legs},
-                            {"removed", v.removed},
-                            {"removed_on_legs", v.removed_on_legs},
-                            {"leg_features_used", v.leg_used},
-                            {"leg_features_by_motion",
-                             {{"classes", {"stance (not moving)", "slower than eq. 4.5", "detectable"}},
-                              {"extracted", v.leg_by_motion},
-                              {"removed", v.leg_removed_by_motion},
-                              {"fused_into_landmarks", v.leg_fused_by_motion}}},
-                            {"per_seed_landmark_rmse_m", v.per_seed_rmse}});
-      }
-      int wins = 0;
-      for (int s = 0; s < slam.seeds; ++s) wins += slam.variants[1].per_seed_rmse[s] < slam.variants[0].per_seed_rmse[s];
-      const VariantStats& v0 = slam.variants[0];
-      j["slam_pole_features"] = {{"near_a_leg", v0.pole_features_near_leg},
-                                 {"near_a_leg_rms_error_m", rms(v0.pole_near_leg_sq, v0.pole_features_near_leg)},
-                                 {"clear", v0.pole_features_clear},
-                                 {"clear_rms_error_m", rms(v0.pole_clear_sq, v0.pole_features_clear)}};
-      j["slam"] = {{"seeds", slam.seeds}, {"steps", slam.steps}, {"path_length_m", slam.path_length_m},
-                   {"people", o.slam_people}, {"poles", o.slam_poles}, {"nees_bounds_95", {nees_lo, nees_hi}},
-                   {"seeds_with_removal_better", wins}, {"variants", variants}};
-    }
-    std::cout << j.dump(2) << "\n";
-    return 0;
-  }
-
-  std::cout << "moving_objects: laser moving-object detection (Amarasinghe 2008, Sec. 4.3-4.4), seed " << o.seed << "\n\n"
-            << "1. Default dynamic scene: " << scene.rows.size() + 1 << " scans at 5 Hz, robot driving 0.125 m/s, "
-            << "3 walking people + 1 cart; scans aligned by the true robot pose\n"
-            << "   scan  time   objects  precision  recall  recall(all)  pos.err hull  pos.err box\n";
+  json j;
+  j["seed"] = o.seed;
+  json per_scan = json::array();
   for (const SceneRow& row : scene.rows) {
-    std::cout << "   " << std::setw(4) << row.scan << "  " << std::setw(5) << fixed(row.time_s, 1) << "  " << std::setw(7)
-              << row.objects << "  " << std::setw(9) << fixed(row.scores.precision(), 3) << "  " << std::setw(6)
-              << fixed(row.scores.recall(), 3) << "  " << std::setw(11) << fixed(row.scores.recallAll(), 3) << "  "
-              << std::setw(12) << (std::isnan(row.hull_error_m) ? std::string("-") : fixed(row.hull_error_m, 3) + " m")
-              << "  " << std::setw(11) << (std::isnan(row.box_error_m) ? std::string("-") : fixed(row.box_error_m, 3) + " m")
-              << "\n";
+    json r = scoresJson(row.scores);
+    r["scan"] = row.scan;
+    r["time_s"] = row.time_s;
+    r["objects"] = row.objects;
+    r["hull_error_m"] = std::isnan(row.hull_error_m) ? json(nullptr) : json(row.hull_error_m);
+    r["box_error_m"] = std::isnan(row.box_error_m) ? json(nullptr) : json(row.box_error_m);
+    per_scan.push_back(r);
   }
-  std::cout << "   pooled over the scans: precision " << fixed(scene.pooled.precision(), 3) << ", recall "
-            << fixed(scene.pooled.recall(), 3) << " (readings on objects that moved more than dd_c), recall of all "
-            << "readings on moving objects " << fixed(scene.pooled.recallAll(), 3) << "\n"
-            << "   mean per scan: precision " << fixed(scene.mean_precision, 3) << ", recall " << fixed(scene.mean_recall, 3)
-            << "\n"
-            << "   objects: " << scene.objects << " (" << scene.false_objects << " without a reading on a moving object); "
-            << "position error RMS over " << scene.located << ": hull centroid " << fixed(rms(scene.hull_sq, scene.located), 3)
-            << " m, box centre " << fixed(rms(scene.box_sq, scene.located), 3) << " m (against the leg/cart centre)\n"
-            << "     legs (" << scene.legs_located << "): hull " << fixed(rms(scene.leg_hull_sq, scene.legs_located), 3)
-            << " m, box " << fixed(rms(scene.leg_box_sq, scene.legs_located), 3) << " m; cart ("
-            << scene.located - scene.legs_located << "): hull "
-            << fixed(rms(scene.hull_sq - scene.leg_hull_sq, scene.located - scene.legs_located), 3) << " m, box "
-            << fixed(rms(scene.box_sq - scene.leg_box_sq, scene.located - scene.legs_located), 3)
-            << " m (the scanner sees only the near side)\n"
-            << "   torso estimates (two legs together): " << scene.torsos << "; confirmed tracks: " << scene.confirmed_tracks
-            << "\n   eq. 4.5, minimum detectable speed at dt = " << dt << " s:";
+  j["default_scene"] = {{"scans", scene.rows.size() + 1},
+                        {"dt_s", dt},
+                        {"points", scoresJson(scene.pooled)},
+                        {"precision", scene.pooled.precision()},
+                        {"recall", scene.pooled.recall()},
+                        {"mean_per_scan_precision", scene.mean_precision},
+                        {"mean_per_scan_recall", scene.mean_recall},
+                        {"objects", scene.objects},
+                        {"false_objects", scene.false_objects},
+                        {"position_error_m",
+                         {{"hull_centroid_rms", rms(scene.hull_sq, scene.located)},
+                          {"box_centre_rms", rms(scene.box_sq, scene.located)},
+                          {"objects", scene.located},
+                          {"legs",
+                           {{"hull_centroid_rms", rms(scene.leg_hull_sq, scene.legs_located)},
+                            {"box_centre_rms", rms(scene.leg_box_sq, scene.legs_located)},
+                            {"objects", scene.legs_located}}},
+                          {"cart",
+                           {{"hull_centroid_rms", rms(scene.hull_sq - scene.leg_hull_sq, scene.located - scene.legs_located)},
+                            {"box_centre_rms", rms(scene.box_sq - scene.leg_box_sq, scene.located - scene.legs_located)},
+                            {"objects", scene.located - scene.legs_located}}}}},
+                        {"torso_estimates", scene.torsos},
+                        {"confirmed_tracks", scene.confirmed_tracks},
+                        {"per_scan", per_scan}};
+  json vmin;
   for (const double r : {1.0, 2.0, 4.0, 8.0})
-    std::cout << " " << fixed(r, 0) << " m: " << fixed(sylva::laser::minDetectableSpeed(g, detector.options().matching, r, dt), 2)
-              << " m/s;";
-  std::cout << "\n\n2. The five cases of Sec. 4.3.4 (two scans 0.2 s apart)\n"
-            << "   case  name                  readings  found  precision  M_C^s first  +A  +O  Alg.4  in full\n";
+    vmin[fixed(r, 0) + "m"] = sylva::laser::minDetectableSpeed(g, detector.options().matching, r, dt);
+  j["min_detectable_speed_mps"] = vmin;
+  json jc = json::array();
   for (const CaseReport& c : cases)
-    std::cout << "   " << std::setw(4) << c.number << "  " << std::left << std::setw(20) << c.name << std::right << "  "
-              << std::setw(8) << c.object_readings << "  " << std::setw(5) << c.scores.on_moving_found << "  " << std::setw(9)
-              << fixed(c.scores.precision(), 3) << "  " << std::setw(11) << c.initial_m_readings << "  " << std::setw(2)
-              << c.joined_a << "  " << std::setw(2) << c.joined_o << "  " << std::setw(5) << (c.replaced ? "yes" : "no")
-              << "  " << (c.full ? "yes" : "NO") << "\n";
-  std::cout << "   cases_detected: " << cases_detected << " of 5\n\n"
-            << "3. Static scene from a moving robot (SLAM hall without people, true poses): " << still.false_objects
-            << " false objects in " << still.scans << " scan pairs (" << still.scans_with_false << " scans with any); "
-            << still.false_readings << " of " << still.valid_readings << " readings reported moving\n";
+    jc.push_back({{"case", c.number}, {"name", c.name}, {"recovered_in_full", c.full},
+                  {"object_readings", c.object_readings}, {"found", c.scores.on_moving_found},
+                  {"precision", c.scores.precision()}, {"initial_m_readings", c.initial_m_readings},
+                  {"joined_from_a", c.joined_a}, {"joined_from_o", c.joined_o}, {"algorithm_4", c.replaced}});
+  j["cases"] = jc;
+  j["cases_detected"] = cases_detected;
+  j["static_check"] = {{"scans", still.scans},
+                       {"false_objects", still.false_objects},
+                       {"false_objects_per_scan", static_cast<double>(still.false_objects) / still.scans},
+                       {"scans_with_false_objects", still.scans_with_false},
+                       {"false_readings", still.false_readings},
+                       {"valid_readings", still.valid_readings}};
   if (!o.no_slam) {
-    std::cout << "\n4. SLAM (Ekf<Unicycle2D, Point2> + RangeBearing) on laser point features, " << o.slam_people
-              << " walking people, " << o.slam_poles << " poles, " << slam.seeds << " worlds x " << slam.steps << " steps ("
-              << fixed(slam.path_length_m, 1) << " m)\n"
-              << "   variant                         pole-landmark RMSE  spurious/run  robot NEES  inside 95%  pose RMSE  "
-                 "leg features removed\n";
-    for (const VariantStats& v : slam.variants)
-      std::cout << "   " << std::left << std::setw(30) << v.name << std::right << "  " << std::setw(15)
-                << fixed(100.0 * rms(v.pole_sq, v.poles), 2) << " cm  " << std::setw(12)
-                << fixed(static_cast<double>(v.spurious) / slam.seeds, 1) << "  " << std::setw(10)
-                << fixed(v.nees_sum / slam.seeds, 2) << "  " << std::setw(9)
-                << fixed(100.0 * v.nees_inside / std::max<long long>(1, v.nees_steps), 1) << "%  " << std::setw(6)
-                << fixed(100.0 * std::sqrt(v.position_sq / slam.seeds), 2) << " cm  " << v.removed_on_legs << " of "
-                << v.features_on_legs << " (" << v.removed - v.removed_on_legs << " not on legs)\n";
+    const auto rmse = [&](std::size_t v) { return rms(slam.variants[v].pole_sq, slam.variants[v].poles); };
+    j["slam_landmark_rmse_m"] = {{"without_removal", rmse(0)}, {"with_removal", rmse(1)},
+                                 {"with_removal_and_memory", rmse(2)}};
+    json variants = json::array();
+    for (const VariantStats& v : slam.variants) {
+      variants.push_back({{"name", v.name},
+                          {"landmark_rmse_m", rms(v.pole_sq, v.poles)},
+                          {"pole_landmarks_per_run", static_cast<double>(v.poles) / slam.seeds},
+                          {"duplicate_pole_landmarks_per_run", static_cast<double>(v.duplicates) / slam.seeds},
+                          {"spurious_landmarks_per_run", static_cast<double>(v.spurious) / slam.seeds},
+                          {"robot_nees_mean", v.nees_sum / slam.seeds},
+                          {"robot_nees_fraction_inside_95", static_cast<double>(v.nees_inside) / v.nees_steps},
+                          {"position_rmse_m", std::sqrt(v.position_sq / slam.seeds)},
+                          {"features_on_legs", v.features_on_legs},
+                          {"removed", v.removed},
+                          {"removed_on_legs", v.removed_on_legs},
+                          {"leg_features_used", v.leg_used},
+                          {"leg_features_by_motion",
+                           {{"classes", {"stance (not moving)", "slower than eq. 4.5", "detectable"}},
+                            {"extracted", v.leg_by_motion},
+                            {"removed", v.leg_removed_by_motion},
+                            {"fused_into_landmarks", v.leg_fused_by_motion}}},
+                          {"per_seed_landmark_rmse_m", v.per_seed_rmse}});
+    }
     int wins = 0;
     for (int s = 0; s < slam.seeds; ++s) wins += slam.variants[1].per_seed_rmse[s] < slam.variants[0].per_seed_rmse[s];
-    std::cout << "   leg features by how far the leg moved since the previous scan (truth): stance / slower than eq. 4.5 / "
-                 "detectable\n";
-    for (const VariantStats& v : slam.variants) {
-      std::cout << "   " << std::left << std::setw(30) << v.name << std::right << "  extracted";
-      for (const long long n : v.leg_by_motion) std::cout << " " << n;
-      std::cout << ", removed";
-      for (const long long n : v.leg_removed_by_motion) std::cout << " " << n;
-      std::cout << ", fused into landmarks";
-      for (const long long n : v.leg_fused_by_motion) std::cout << " " << n;
-      std::cout << "\n";
-    }
     const VariantStats& v0 = slam.variants[0];
-    std::cout << "   pole features with a leg within 0.3 m of the pole: " << v0.pole_features_near_leg << " of "
-              << v0.pole_features_near_leg + v0.pole_features_clear << ", RMS error of their centre "
-              << fixed(100.0 * rms(v0.pole_near_leg_sq, v0.pole_features_near_leg), 1) << " cm (others "
-              << fixed(100.0 * rms(v0.pole_clear_sq, v0.pole_features_clear), 1) << " cm); duplicate pole landmarks per run:";
-    for (const VariantStats& v : slam.variants) std::cout << " " << fixed(static_cast<double>(v.duplicates) / slam.seeds, 2);
-    std::cout << "\n";
-    std::cout << "   robot NEES: mean over steps of one run, 95% bounds of one step [" << fixed(nees_lo, 2) << ", "
-              << fixed(nees_hi, 2) << "]; removal lowers the pole-landmark error in " << wins << " of " << slam.seeds
-              << " worlds\n";
+    j["slam_pole_features"] = {{"near_a_leg", v0.pole_features_near_leg},
+                               {"near_a_leg_rms_error_m", rms(v0.pole_near_leg_sq, v0.pole_features_near_leg)},
+                               {"clear", v0.pole_features_clear},
+                               {"clear_rms_error_m", rms(v0.pole_clear_sq, v0.pole_features_clear)}};
+    j["slam"] = {{"seeds", slam.seeds}, {"steps", slam.steps}, {"path_length_m", slam.path_length_m},
+                 {"people", o.slam_people}, {"poles", o.slam_poles}, {"nees_bounds_95", {nees_lo, nees_hi}},
+                 {"seeds_with_removal_better", wins}, {"variants", variants}};
   }
-  if (!o.svg_prefix.empty())
-    std::cout << "\npictures: " << o.svg_prefix << "_scene.svg, " << o.svg_prefix << "_cases.svg"
-              << (o.no_slam ? "" : ", " + o.svg_prefix + "_slam.svg") << "\n";
+  sylva_examples::writeResult(std::cout, o.json,
+                              "moving_objects: laser moving-object detection (Amarasinghe 2008, Sec. 4.3-4.4)", j);
   return 0;
 }
 

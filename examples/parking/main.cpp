@@ -30,6 +30,7 @@
 #include "station_camera.hpp"
 #include "study.hpp"
 #include "../common/cli_checks.hpp"
+#include "../common/report.hpp"
 
 
 namespace {
@@ -179,74 +180,39 @@ int runOne(const Options& o,
   }
 
   const double dt = 1.0 / camera.params().frame_rate_hz;
-  if (o.json) {
-    nlohmann::json j;
-    j["outcome"] = parking::toString(r.outcome);
-    j["parked"] = parked;
-    j["time_s"] = r.time_s;
-    j["cycles"] = r.cycles;
-    j["forward_moves"] = r.forward_moves;
-    j["reverse_moves"] = r.reverse_moves;
-    j["frames"] = r.frames;
-    j["start"] = poseJson(r.start);
-    j["goal"] = poseJson(r.goal);
-    j["final_pose"] = poseJson(r.final_pose);
-    j["final_error"] = {{"x_m", r.error[0]},
-                        {"y_m", r.error[1]},
-                        {"heading_deg", r.error[2] / kRadPerDeg},
-                        {"position_m", std::hypot(r.error[0], r.error[1])}};
-    j["min_station_distance_m"] = r.min_station_distance_m;
-    nlohmann::json trace = nlohmann::json::array();
-    for (std::size_t i = 0; i < r.transitions.size(); ++i) {
-      const parking::Transition& t = r.transitions[i];
-      trace.push_back({{"frame", t.frame},
-                       {"t_s", static_cast<double>(t.frame) * dt},
-                       {"from", parking::toString(t.from)},
-                       {"to", parking::toString(t.to)},
-                       {"event", parking::toString(t.event)},
-                       {"c_px", t.c_px},
-                       {"pose", poseJson(r.transition_poses[i])}});
-    }
-    j["trace"] = trace;
-    j["seed"] = o.seed;
-    j["controller"] = controllerJson(cp);
-    j["camera_robot"] = cameraJson(camera.params(), robot);
-    j["files"] = written;
-    std::cout << j.dump(2) << "\n";
-    return parked ? 0 : 3;
-  }
-
-  std::cout << "parking: start (" << fixed(start[0], 3) << ", " << fixed(start[1], 3)
-            << ") m, heading " << fixed(o.start_heading_deg, 1) << " deg; goal ("
-            << fixed(r.goal[0], 4) << ", " << fixed(r.goal[1], 4) << ") m, heading "
-            << fixed(r.goal[2] / kRadPerDeg, 2) << " deg\n"
-            << "  " << noiseLine(camera.params()) << "; seed " << o.seed << "\n"
-            << "  c: "
-            << (cp.adapt_c ? "adaptive in [" + fixed(cp.c_min_px, 0) + ", " +
-                                 fixed(cp.c_max_px, 0) + "] px, gain " + fixed(cp.c_gain, 1) +
-                                 (cp.scaled_asymmetry ? " (scaled asymmetry)" : " (raw f1 - f2)")
-                           : "fixed at " + fixed(cp.c_static_px, 0) + " px")
-            << "\nFSM trace:\n";
+  nlohmann::json j;
+  j["outcome"] = parking::toString(r.outcome);
+  j["parked"] = parked;
+  j["time_s"] = r.time_s;
+  j["cycles"] = r.cycles;
+  j["forward_moves"] = r.forward_moves;
+  j["reverse_moves"] = r.reverse_moves;
+  j["frames"] = r.frames;
+  j["start"] = poseJson(r.start);
+  j["goal"] = poseJson(r.goal);
+  j["final_pose"] = poseJson(r.final_pose);
+  j["final_error"] = {{"x_m", r.error[0]},
+                      {"y_m", r.error[1]},
+                      {"heading_deg", r.error[2] / kRadPerDeg},
+                      {"position_m", std::hypot(r.error[0], r.error[1])}};
+  j["min_station_distance_m"] = r.min_station_distance_m;
+  nlohmann::json trace = nlohmann::json::array();
   for (std::size_t i = 0; i < r.transitions.size(); ++i) {
     const parking::Transition& t = r.transitions[i];
-    const parking::Pose& p = r.transition_poses[i];
-    std::cout << "  t = " << std::setw(6) << fixed(static_cast<double>(t.frame) * dt, 2)
-              << " s  frame " << std::setw(5) << t.frame << "  " << std::setw(7)
-              << parking::toString(t.from) << " -> " << std::setw(7) << std::left
-              << parking::toString(t.to) << std::right << "  " << std::setw(5)
-              << parking::toString(t.event) << "  c = " << fixed(t.c_px, 1) << " px  at ("
-              << fixed(p[0], 3) << ", " << fixed(p[1], 3) << ") m, " << fixed(p[2] / kRadPerDeg, 1)
-              << " deg\n";
+    trace.push_back({{"frame", t.frame},
+                     {"t_s", static_cast<double>(t.frame) * dt},
+                     {"from", parking::toString(t.from)},
+                     {"to", parking::toString(t.to)},
+                     {"event", parking::toString(t.event)},
+                     {"c_px", t.c_px},
+                     {"pose", poseJson(r.transition_poses[i])}});
   }
-  std::cout << "outcome: " << parking::toString(r.outcome) << " after " << fixed(r.time_s, 2)
-            << " s; " << r.cycles << " forward-reverse cycle" << (r.cycles == 1 ? "" : "s") << " ("
-            << r.forward_moves << " forward move" << (r.forward_moves == 1 ? "" : "s") << ", "
-            << r.reverse_moves << " reverse move" << (r.reverse_moves == 1 ? "" : "s") << ")\n"
-            << "final pose error" << (parked ? "" : " (not parked)") << ": x "
-            << fixed(100 * r.error[0], 2) << " cm (lateral), y " << fixed(100 * r.error[1], 2)
-            << " cm (along the axis), heading " << fixed(r.error[2] / kRadPerDeg, 2) << " deg\n"
-            << "closest approach to the station: " << fixed(r.min_station_distance_m, 3) << " m\n";
-  for (const std::string& f : written) std::cout << "wrote " << f << "\n";
+  j["trace"] = trace;
+  j["seed"] = o.seed;
+  j["controller"] = controllerJson(cp);
+  j["camera_robot"] = cameraJson(camera.params(), robot);
+  j["files"] = written;
+  sylva_examples::writeResult(std::cout, o.json, "parking: one attempt of the hybrid parking controller (Amarasinghe 2008, Ch. 5)", j);
   return parked ? 0 : 3;
 }
 
@@ -297,51 +263,26 @@ int runStudyMode(const Options& o,
                            {l0.str(), l1.str(), l2.str(), l3.str()});
   }
 
-  if (o.json) {
-    nlohmann::json j = summaryJson(ra.summary);
-    j["no_adaptation"] = summaryJson(rh.summary);
-    j["no_adaptation"]["c_px"] = cp.c_max_px;
-    j["static_c_min"] = summaryJson(rl.summary);
-    j["static_c_min"]["c_px"] = cp.c_min_px;
-    j["study"] = {{"runs", so.runs},
-                  {"seed", o.seed},
-                  {"r_min_m", so.r_min_m},
-                  {"r_max_m", so.r_max_m},
-                  {"max_angle_deg", so.max_angle_deg},
-                  {"max_heading_offset_deg", so.max_heading_offset_deg},
-                  {"margin_px", so.margin_px},
-                  {"max_time_s", so.max_time_s}};
-    j["goal"] = poseJson(goal);
-    j["controller"] = controllerJson(cp);
-    j["camera_robot"] = cameraJson(camera.params(), robot);
-    if (!svg_path.empty()) j["files"] = {svg_path};
-    std::cout << j.dump(2) << "\n";
-    return 0;
-  }
-
-  std::cout << "parking --study: " << so.runs << " random starts, " << fixed(so.r_min_m, 2) << "-"
-            << fixed(so.r_max_m, 2) << " m from P2, within +-" << fixed(so.max_angle_deg, 1)
-            << " deg of the axis, heading +-" << fixed(so.max_heading_offset_deg, 1)
-            << " deg off P2, whole station in view\n  " << noiseLine(camera.params()) << "; seed "
-            << o.seed << "\n\n";
-  std::cout << "  virtual edge c          parked   lost  t/o   x spread   y spread   cycles "
-               "(max)   time s (max)\n";
-  const auto row = [&](const std::string& name, const parking::StudySummary& s) {
-    std::cout << "  " << std::left << std::setw(22) << name << std::right << std::setw(5)
-              << s.parked << "/" << std::setw(3) << s.runs << std::setw(6) << s.station_lost
-              << std::setw(5) << s.timed_out << "   +-" << std::setw(5)
-              << fixed(100 * s.x_spread_m, 2) << " cm  +-" << std::setw(4)
-              << fixed(100 * s.y_spread_m, 2) << " cm  " << std::setw(5) << fixed(s.mean_cycles, 2)
-              << " (" << std::setw(2) << s.max_cycles << ")   " << std::setw(6)
-              << fixed(s.mean_time_s, 1) << " (" << fixed(s.max_time_s, 1) << ")\n";
-  };
-  row("adaptive (eq. 5.9)", ra.summary);
-  row("fixed " + fixed(cp.c_max_px, 0) + " px (c_max)", rh.summary);
-  row("fixed " + fixed(cp.c_min_px, 0) + " px (c_min)", rl.summary);
-  std::cout << "\n  spread: half of (max - min) of the final position error over the parked "
-               "runs (the +- of Fig. 5.16);\n  thesis: +-4 cm in x, +-0.5 cm in y over 20 runs; "
-               "Table 5.3: 1-3 cycles, 10.9-47.3 s\n";
-  if (!svg_path.empty()) std::cout << "wrote " << svg_path << "\n";
+  nlohmann::json j = summaryJson(ra.summary);
+  j["no_adaptation"] = summaryJson(rh.summary);
+  j["no_adaptation"]["c_px"] = cp.c_max_px;
+  j["static_c_min"] = summaryJson(rl.summary);
+  j["static_c_min"]["c_px"] = cp.c_min_px;
+  j["study"] = {{"runs", so.runs},
+                {"seed", o.seed},
+                {"r_min_m", so.r_min_m},
+                {"r_max_m", so.r_max_m},
+                {"max_angle_deg", so.max_angle_deg},
+                {"max_heading_offset_deg", so.max_heading_offset_deg},
+                {"margin_px", so.margin_px},
+                {"max_time_s", so.max_time_s}};
+  j["goal"] = poseJson(goal);
+  j["controller"] = controllerJson(cp);
+  j["camera_robot"] = cameraJson(camera.params(), robot);
+  if (!svg_path.empty()) j["files"] = {svg_path};
+  j["note"] = "spread: half of (max - min) of the final position error over the parked runs (the +- of Fig. 5.16)";
+  sylva_examples::writeResult(std::cout, o.json,
+                              "parking --study: random starts, the adaptive virtual edge c against two fixed ones", j);
   return 0;
 }
 

@@ -111,6 +111,7 @@
 
 #include "svg_map.hpp"
 #include "../common/cli_checks.hpp"
+#include "../common/report.hpp"
 #include "../common/text.hpp"
 
 
@@ -428,62 +429,36 @@ int run(const Options& o) {
     range_bearing_slam::writeSvgMap(o.svg, map);
   }
 
-  if (o.json) {
-    nlohmann::json j;
-    j["runs"] = o.runs;
-    j["steps"] = world.steps;
-    j["seed"] = o.seed;
-    j["association"] = o.association;
-    j["landmarks"] = world.landmarks.size();
-    j["path_length_m"] = path_length;
-    j["landmark_rmse_m"] = landmark_rmse;
-    j["landmarks_mapped_mean"] = static_cast<double>(landmarks_mapped) / runs;
-    j["final_pose_error_m"] = final_position_error;
-    j["final_heading_error_rad"] = final_heading_error;
-    j["odometry_final_pose_error_m"] = odometry_error;
-    j["nees_mean"] = nees_mean;
-    j["nees_bounds"] = {lo, hi};
-    j["nees_inside"] = nees_inside;
-    j["nees_fraction_inside"] = inside;
-    j["noise"] = {{"sigma_range_m", o.sigma_range_m},
-                  {"sigma_bearing_deg", o.sigma_bearing_deg},
-                  {"sigma_v_mps", o.sigma_v_mps},
-                  {"sigma_omega_degps", o.sigma_omega_degps},
-                  {"filter_noise_scale", o.filter_noise_scale}};
-    if (world.association != Association::kKnown) {
-      j["association_stats"] = {{"readings", association.readings},
-                                {"paired", association.paired},
-                                {"wrong", association.wrong},
-                                {"added", association.added},
-                                {"duplicates", association.duplicates},
-                                {"ambiguous", association.ambiguous}};
-    }
-    std::cout << j.dump(2) << "\n";
-    return 0;
-  }
-
-  std::cout << "range_bearing_slam: " << o.runs << (o.runs == 1 ? " run" : " runs") << " x "
-            << world.steps << " steps (" << fixed(path_length, 1) << " m), "
-            << world.landmarks.size() << " landmarks, association " << o.association << ", seed "
-            << o.seed << "\n";
-  std::cout << "  landmark RMS error        " << fixed(landmark_rmse, 4) << " m  (over "
-            << fixed(static_cast<double>(landmarks_mapped) / runs, 1)
-            << " mapped landmarks per run)\n";
-  std::cout << "  final pose error          " << fixed(final_position_error, 4) << " m, "
-            << fixed(final_heading_error / kRadPerDeg, 3) << " deg\n";
-  std::cout << "  odometry-only pose error  " << fixed(odometry_error, 4) << " m\n";
-  std::cout << "  robot NEES mean           " << fixed(nees_mean, 3) << "  95% bounds ["
-            << fixed(lo, 3) << ", " << fixed(hi, 3) << "] -> "
-            << (nees_inside ? "inside" : "OUTSIDE") << "\n";
-  std::cout << "  steps with NEES inside    " << fixed(100.0 * inside, 1) << " %\n";
+  nlohmann::json j;
+  j["runs"] = o.runs;
+  j["steps"] = world.steps;
+  j["seed"] = o.seed;
+  j["association"] = o.association;
+  j["landmarks"] = world.landmarks.size();
+  j["path_length_m"] = path_length;
+  j["landmark_rmse_m"] = landmark_rmse;
+  j["landmarks_mapped_mean"] = static_cast<double>(landmarks_mapped) / runs;
+  j["final_pose_error_m"] = final_position_error;
+  j["final_heading_error_rad"] = final_heading_error;
+  j["odometry_final_pose_error_m"] = odometry_error;
+  j["nees_mean"] = nees_mean;
+  j["nees_bounds"] = {lo, hi};
+  j["nees_inside"] = nees_inside;
+  j["nees_fraction_inside"] = inside;
+  j["noise"] = {{"sigma_range_m", o.sigma_range_m},
+                {"sigma_bearing_deg", o.sigma_bearing_deg},
+                {"sigma_v_mps", o.sigma_v_mps},
+                {"sigma_omega_degps", o.sigma_omega_degps},
+                {"filter_noise_scale", o.filter_noise_scale}};
   if (world.association != Association::kKnown) {
-    std::cout << "  association               " << association.paired << " of "
-              << association.readings << " readings paired, " << association.wrong << " wrongly; "
-              << association.added << " landmarks added (" << association.duplicates
-              << " duplicates), " << association.ambiguous << " readings dropped as ambiguous\n";
+    j["association_stats"] = {{"readings", association.readings},
+                              {"paired", association.paired},
+                              {"wrong", association.wrong},
+                              {"added", association.added},
+                              {"duplicates", association.duplicates},
+                              {"ambiguous", association.ambiguous}};
   }
-  if (!o.svg.empty()) std::cout << "  map of run 1 written to   " << o.svg << "\n";
-  if (!o.csv.empty()) std::cout << "  per-step statistics in    " << o.csv << "\n";
+  sylva_examples::writeResult(std::cout, o.json, "range_bearing_slam: 2D EKF-SLAM on a simulated loop", j);
   return 0;
 }
 

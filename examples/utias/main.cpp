@@ -25,10 +25,8 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <iomanip>
 #include <iostream>
 #include <map>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -38,6 +36,7 @@
 #include <sylva/datasets/utias_mrclam.hpp>
 
 #include "../common/cli_checks.hpp"
+#include "../common/report.hpp"
 #include "../common/text.hpp"
 #include "../range_bearing_slam/svg_map.hpp"
 #include "evaluation.hpp"
@@ -274,8 +273,7 @@ int noiseStudy(const Options& o, const sylva::datasets::UtiasDataset& data) {
            {"heading_rad_by_turn_rate", {{"below_0.02_radps", spreadJson(utias::spreadOf(heading[0]))},
                                          {"0.02_to_0.2_radps", spreadJson(utias::spreadOf(heading[1]))},
                                          {"above_0.2_radps", spreadJson(utias::spreadOf(heading[2]))}}}}}};
-  std::cout << j.dump(2) << "\n";
-  (void)o;
+  sylva_examples::writeResult(std::cout, o.json, "utias --noise-study: residuals of the measurements and commands against the ground truth", j);
   return 0;
 }
 
@@ -323,18 +321,6 @@ json commandFitJson(const utias::CommandFit& c) {
               {"spread", {c.spread[0], c.spread[1], c.spread[2]}}};
 }
 
-std::string settingText(const utias::GridSetting& g) {
-  std::ostringstream os;
-  os << g.process << " / " << g.range << " / " << g.bearing_rad;
-  return os.str();
-}
-
-std::string summaryText(const utias::TargetSummary& t) {
-  return fixed(t.vicon_mean_m, 3) + " " + fixed(t.vicon_worst_m, 3) + " | " + fixed(t.aligned_mean_m, 3) + " " +
-         fixed(t.aligned_worst_m, 3) + " | " + fixed(t.landmark_worst_m, 3) + " | " + fixed(t.nees_min, 2) + " " +
-         fixed(t.nees_max, 2) + " | " + std::to_string(t.met()) + " | " + fixed(t.smallestMargin(), 3);
-}
-
 utias::RobotSet allRobots(const sylva::datasets::UtiasDataset& data) {
   utias::RobotSet out;
   for (const auto& r : data.robots) out.push_back(&r);
@@ -343,22 +329,21 @@ utias::RobotSet allRobots(const sylva::datasets::UtiasDataset& data) {
 
 /// The study behind the noise settings: the known-correspondence run of every robot for each
 /// setting of the grid of selection.hpp (the same setting for all robots; delay, calibration
-/// and everything else as given), one line per setting with the figures, how many of
-/// its targets it meets, the smallest margin, and the setting the declared rule picks (*).
+/// and everything else as given), one row per setting with the figures, how many of
+/// its targets it meets, the smallest margin, and the setting the declared rule picks (`chosen`).
 int configurationStudy(const Options& o, const sylva::datasets::UtiasDataset& data) {
   const auto grid = utias::studyGrid();
   const auto summaries = utias::gridSummaries(allRobots(data), data.landmarks, o.noise, o.max_time_s);
   const std::size_t chosen = utias::selectSetting(summaries);
-  std::cout << "utias --study on " << recordingName(o.data) << ", " << data.robots.size()
-            << " robots, command delay " << o.noise.command_delay_s << " s, calibration v_gain " << o.noise.v_gain
-            << ", v_turn_loss " << o.noise.v_turn_loss << " m/rad, omega_gain " << o.noise.omega_gain
-            << ", omega_bias " << o.noise.omega_bias << " rad/s\n";
-  std::cout << "  process range bearing | Vicon mean worst | aligned mean worst | landmark worst | NEES min max | "
-               "targets met (of 6) | smallest margin\n";
+  json settings = json::array();
   for (std::size_t k = 0; k < grid.size(); ++k)
-    std::cout << (k == chosen ? "* " : "  ") << std::setw(7) << grid[k].process << std::setw(6) << grid[k].range
-              << std::setw(8) << grid[k].bearing_rad << " | " << summaryText(summaries[k]) << "\n";
-  std::cout << "* the setting the declared rule picks (most targets met, then the largest smallest margin)\n";
+    settings.push_back({{"setting", settingJson(grid[k])}, {"summary", summaryJson(summaries[k])}, {"chosen", k == chosen}});
+  sylva_examples::writeResult(
+      std::cout, o.json, "utias --study: the noise settings of the grid on every robot (chosen: the declared rule's pick)",
+      json{{"recording", recordingName(o.data)},
+           {"robots", data.robots.size()},
+           {"base_config", configJson(o.noise)},
+           {"settings", settings}});
   return 0;
 }
 
@@ -372,11 +357,6 @@ int leaveOneOut(const Options& o, const sylva::datasets::UtiasDataset& data) {
   json rotations = json::array();
   std::vector<utias::RobotFigures> held_out;
   std::vector<std::string> notes;
-  std::ostringstream text;
-  text << "utias --leave-one-out on " << recording << ": fit on the other robots, score the held-out one\n"
-       << "  fitted: command delay, calibration (pooled least squares), noise setting (grid of 36, declared rule)\n\n"
-       << "held-out | delay  v_gain  v_turn_loss  omega_gain  omega_bias | setting p / r / b | training: targets met,"
-          " margin | held-out: aligned  Vicon  landmark  NEES\n";
   for (const auto& robot : data.robots) {
     utias::RobotSet training;
     for (const auto& r : data.robots)
@@ -403,58 +383,30 @@ int leaveOneOut(const Options& o, const sylva::datasets::UtiasDataset& data) {
                            {"samples_scored", s.samples_scored},
                            {"truth_ends_early", s.truthEndsEarly()},
                            {"scored_until_s", r4(s.last_scored_s)}}}});
-    text << std::setw(8) << robot.robot << " | " << fixed(c.delay_s, 2) << std::setw(8) << fixed(c.v_gain, 4)
-         << std::setw(13) << fixed(c.v_turn_loss, 4) << std::setw(12) << fixed(c.omega_gain, 4) << std::setw(12)
-         << fixed(c.omega_bias, 4) << " | " << std::setw(17) << settingText(fit.setting) << " | "
-         << fit.grid[fit.chosen].met() << ", " << fixed(fit.grid[fit.chosen].smallestMargin(), 3) << " | "
-         << fixed(s.aligned_rmse_m, 3) << "  " << fixed(s.rmse_m, 3) << "  " << fixed(s.landmark_aligned_rmse_m, 3)
-         << "  " << fixed(s.nees_mean, 2) << "\n";
   }
   const utias::TargetSummary summary = utias::summarize(held_out);
   // The default's rule: the same procedure on every robot.
   const utias::ConfigurationFit all = utias::fitConfiguration(allRobots(data), data.landmarks, o.noise, o.max_time_s);
   const utias::NoiseConfig compiled;
   const bool default_matches = utias::hasCommandFit(compiled, all.commands) && utias::hasSetting(compiled, all.setting);
-  if (o.json) {
-    json all_grid = json::array();
-    for (std::size_t k = 0; k < grid.size(); ++k)
-      all_grid.push_back({{"setting", settingJson(grid[k])}, {"summary", summaryJson(all.grid[k])}});
-    json all_robots{{"commands", commandFitJson(all.commands)},
-                    {"setting", settingJson(all.setting)},
-                    {"summary", summaryJson(all.grid[all.chosen])},
-                    {"compiled_default_matches", default_matches},
-                    {"grid", all_grid}};
-    json notes_json = notes;
-    std::cout << json{{"recording", recording},
-                      {"mode", "leave_one_robot_out"},
-                      {"rotations", rotations},
-                      {"held_out_summary", summaryJson(summary)},
-                      {"all_robots", all_robots},
-                      {"notes", notes_json},
-                      {"max_time_s", o.max_time_s},
-                      {"base_config", configJson(o.noise)}}
-                     .dump(2)
-              << "\n";
-    return 0;
-  }
-  std::cout << text.str() << "\n";
-  std::cout << "held-out robots against the targets (Vicon mean worst | aligned mean worst | landmark worst | NEES "
-               "min max | met | smallest margin):\n  "
-            << summaryText(summary) << "\n"
-            << "  aligned mean <= 0.25: " << (summary.alignedMeanMet() ? "met" : "NOT met")
-            << "; aligned every robot <= 0.40: " << (summary.alignedWorstMet() ? "met" : "NOT met")
-            << "; Vicon mean <= 0.50: " << (summary.viconMeanMet() ? "met" : "NOT met")
-            << "; Vicon every robot <= 0.80: " << (summary.viconWorstMet() ? "met" : "NOT met")
-            << "; landmark <= 0.10: " << (summary.landmarkMet() ? "met" : "NOT met")
-            << "; NEES in [1, 6]: " << (summary.neesMet() ? "met" : "NOT met") << "\n\n";
-  const auto& c = all.commands;
-  std::cout << "the procedure on all " << data.robots.size() << " robots (the default's rule): delay "
-            << fixed(c.delay_s, 2) << " s, v_gain " << fixed(c.v_gain, 4) << ", v_turn_loss " << fixed(c.v_turn_loss, 4)
-            << " m/rad, omega_gain " << fixed(c.omega_gain, 4) << ", omega_bias " << fixed(c.omega_bias, 4)
-            << " rad/s, spread of the robots' own calibrations " << fixed(c.spread[0], 4) << " / " << fixed(c.spread[1], 4)
-            << " / " << fixed(c.spread[2], 4) << ", setting " << settingText(all.setting) << " (on them: " << summaryText(all.grid[all.chosen])
-            << ")\n  the compiled default (noise_model.hpp) " << (default_matches ? "is" : "is NOT") << " this\n";
-  for (const auto& n : notes) std::cout << "note: " << n << "\n";
+  json all_grid = json::array();
+  for (std::size_t k = 0; k < grid.size(); ++k)
+    all_grid.push_back({{"setting", settingJson(grid[k])}, {"summary", summaryJson(all.grid[k])}});
+  json all_robots{{"commands", commandFitJson(all.commands)},
+                  {"setting", settingJson(all.setting)},
+                  {"summary", summaryJson(all.grid[all.chosen])},
+                  {"compiled_default_matches", default_matches},
+                  {"grid", all_grid}};
+  sylva_examples::writeResult(std::cout, o.json,
+                              "utias --leave-one-out: fit on the other robots, score the held-out one",
+                              json{{"recording", recording},
+                                   {"mode", "leave_one_robot_out"},
+                                   {"rotations", rotations},
+                                   {"held_out_summary", summaryJson(summary)},
+                                   {"all_robots", all_robots},
+                                   {"notes", notes},
+                                   {"max_time_s", o.max_time_s},
+                                   {"base_config", configJson(o.noise)}});
   return 0;
 }
 
@@ -513,57 +465,15 @@ int run(const Options& o) {
     reports.push_back(std::move(r));
   }
 
-  if (o.json) {
-    json robots = json::array();
-    for (const auto& r : reports) robots.push_back(robotJson(r));
-    json notes = json::array();
-    for (const auto& r : reports)
-      if (const std::string n = coverageNote(r.robot, r.known_scores); !n.empty()) notes.push_back(n);
-    std::cout << json{{"recording", recording}, {"robots", robots}, {"notes", notes}, {"config", configJson(o.noise)}}.dump(2)
-              << "\n";
-    return 0;
-  }
-  std::cout << "utias: EKF-SLAM on " << recording << " (" << data.folder << "; UTIAS MRCLAM, Leung et al. IJRR 2011)\n"
-            << "  known: barcodes give the landmark; jcbb: associateJcbb, barcodes only to score\n\n";
-  std::cout << "robot  known_rmse  known_aligned  jcbb_aligned  landmark_aligned  nees_mean  dead_reckoning  "
-               "runtime_s (known+jcbb)\n";
-  double sum[4] = {0, 0, 0, 0};
-  for (const auto& r : reports) {
-    const auto& k = r.known_scores;
-    std::cout << std::setw(5) << r.robot << std::setw(12) << fixed(k.rmse_m, 3) << std::setw(15)
-              << fixed(k.aligned_rmse_m, 3) << std::setw(14) << fixed(r.jcbb_scores.aligned_rmse_m, 3)
-              << std::setw(18) << fixed(k.landmark_aligned_rmse_m, 3) << std::setw(11) << fixed(k.nees_mean, 2)
-              << std::setw(16) << fixed(k.dead_reckoning_rmse_m, 2) << std::setw(12)
-              << fixed(r.known.runtime_s + r.jcbb.runtime_s, 3) << "\n";
-    sum[0] += k.rmse_m;
-    sum[1] += k.aligned_rmse_m;
-    sum[2] += r.jcbb_scores.aligned_rmse_m;
-    sum[3] += k.landmark_aligned_rmse_m;
-  }
-  const double n = static_cast<double>(reports.size());
-  std::cout << " mean" << std::setw(12) << fixed(sum[0] / n, 3) << std::setw(15) << fixed(sum[1] / n, 3)
-            << std::setw(14) << fixed(sum[2] / n, 3) << std::setw(18) << fixed(sum[3] / n, 3) << "\n\n";
-  for (const auto& r : reports) {
-    const auto& a = r.jcbb.counts;
-    std::cout << "robot " << r.robot << ": " << r.known.counts.observations << " landmark observations ("
-              << r.known.counts.gated_out << " rejected by the outlier gate); skipped: " << r.unknown_barcodes
-              << " unknown barcodes, " << r.robot_observations << " observations of robots\n"
-              << "  jcbb: " << a.paired << " paired (" << a.correct << " correct, " << a.wrong << " wrong, " << a.wrong_same_cluster
-              << " of them in the same cluster), "
-              << a.added << " new landmarks (" << a.duplicates << " duplicates), " << a.ambiguous
-              << " ambiguous dropped; " << r.jcbb_scores.landmarks_mapped << " landmarks, landmark RMS "
-              << fixed(r.jcbb_scores.landmark_aligned_rmse_m, 3) << " m aligned, NEES "
-              << fixed(r.jcbb_scores.nees_mean, 2) << "\n";
-  }
+  json robots = json::array();
+  for (const auto& r : reports) robots.push_back(robotJson(r));
+  json notes = json::array();
   for (const auto& r : reports)
-    if (r.known.online_gains)
-      std::cout << "robot " << r.robot << ": online gains at the end (known correspondences): k_v "
-                << fixed(r.known.gains[0], 4) << " +- " << fixed(r.known.gain_sigmas[0], 4) << ", k_w "
-                << fixed(r.known.gains[1], 4) << " +- " << fixed(r.known.gain_sigmas[1], 4) << ", b_w "
-                << fixed(r.known.gains[2], 4) << " +- " << fixed(r.known.gain_sigmas[2], 4) << " rad/s\n";
-  for (const auto& r : reports)
-    if (const std::string note = coverageNote(r.robot, r.known_scores); !note.empty()) std::cout << "note: " << note << "\n";
-  if (!o.svg_prefix.empty()) std::cout << "\npictures: " << o.svg_prefix << "_robot<N>.svg\n";
+    if (const std::string n = coverageNote(r.robot, r.known_scores); !n.empty()) notes.push_back(n);
+  sylva_examples::writeResult(std::cout, o.json,
+                              "utias: EKF-SLAM on " + recording + " (UTIAS MRCLAM, Leung et al. IJRR 2011); known: "
+                              "barcodes give the landmark; jcbb: associateJcbb, barcodes only to score",
+                              json{{"recording", recording}, {"robots", robots}, {"notes", notes}, {"config", configJson(o.noise)}});
   return 0;
 }
 
@@ -588,15 +498,15 @@ int main(int argc, char** argv) {
   app.add_flag("--json", o.json, "print one JSON object instead of text");
   app.add_option("--svg-prefix", o.svg_prefix, "write <prefix>_robot<N>.svg for each robot");
   app.add_flag("--noise-study", o.noise_study,
-               "print the residual statistics of measurements and commands against the ground truth (JSON)");
+               "print the residual statistics of measurements and commands against the ground truth");
   app.add_flag("--study", o.study,
                "run the known-correspondence filter of every robot over the 36 noise settings of the grid "
                "(examples/utias/selection.hpp; they replace the command and measurement noise flags) with the "
-               "delay and calibration given, one line per setting, and mark the one the declared rule picks");
+               "delay and calibration given, one row per setting, and mark the one the declared rule picks");
   app.add_flag("--leave-one-out", o.leave_one_out,
                "leave-one-robot-out: for each robot, fit the command delay, calibration and noise setting on "
                "the other robots (examples/utias/fit.hpp) and score it; then the same fit on all robots (the "
-               "default's rule). Text table, or JSON with --json");
+               "default's rule)");
   auto& c = o.noise;
   app.add_option("--command-delay", c.command_delay_s, "a command logged at t acts from t + this (s)")
       ->check(positive(true));

@@ -7,7 +7,8 @@
 // The run is described in slam_run.hpp, the GPS comparison in gps_error.hpp, and the whole
 // example in docs/examples/victoria-park.md.
 //
-// Output: a table per variant, --json for {"config": ..., "point": {...}, "tree": {...}},
+// Output: one result per variant as text (examples/common/report.hpp), or with --json as
+// {"config": ..., "point": {...}, "tree": {...}},
 // --svg-prefix for a map per variant, --robustness for the 81-setting noise study
 // (each of the four noise values x1.5, x1, /1.5), run on --threads threads,
 // --compare-compressed for each variant run plain and with the compressed EKF (times, and the
@@ -19,7 +20,6 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <iomanip>
 #include <iostream>
 #include <thread>
 
@@ -27,6 +27,7 @@
 #include <nlohmann/json.hpp>
 
 #include "../common/cli_checks.hpp"
+#include "../common/report.hpp"
 #include "config.hpp"
 #include "gps_error.hpp"
 #include "slam_run.hpp"
@@ -65,21 +66,6 @@ nlohmann::json toJson(const RunResult& r) {
                            {"steering_offset_rad", r.steering_offset_rad},
                            {"steering_offset_sigma_rad", r.steering_offset_sigma_rad}};
   return j;
-}
-
-void printTable(const RunResult& r) {
-  std::cout << std::fixed << std::setprecision(3) << r.variant << ": GPS RMS " << r.gps.rmse_valid_m
-            << " m (" << r.gps.valid << " valid of " << r.gps.total << " fixes), median " << r.gps.median_valid_m
-            << " m, max " << r.gps.max_valid_m << " m, all fixes " << r.gps.rmse_all_m << " m | landmarks "
-            << r.landmarks << " | readings " << r.readings << ", paired " << r.paired << ", ambiguous "
-            << r.ambiguous << ", tentative " << r.tentative_readings << ", refused " << r.refused_updates
-            << (std::isfinite(r.steering_offset_rad)
-                    ? " | speed scale error " + std::to_string(r.speed_scale) + " +- " + std::to_string(r.speed_scale_sigma) +
-                          ", steering offset " + std::to_string(r.steering_offset_rad) + " +- " +
-                          std::to_string(r.steering_offset_sigma_rad) + " rad"
-                    : std::string())
-            << " | " << r.scans << " scans, " << r.predictions << " predictions, " << r.runtime_s << " s, "
-            << r.step_ms_end << " ms/scan at the end\n";
 }
 
 struct Study {
@@ -141,7 +127,7 @@ double relativeDifference(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
 /// flipped on a round-off difference). Returns whether they agree to 1e-9.
 template <class V>
 bool compareCompressed(const sylva::datasets::VictoriaParkData& data, const Config& cfg, const std::vector<char>& valid,
-                       const char* name, bool json, nlohmann::json& out) {
+                       const char* name, nlohmann::json& out) {
   Config plain_cfg = cfg;
   plain_cfg.compress_radius_m = 0.0;
   FinalState plain_state, compressed_state;
@@ -160,13 +146,6 @@ bool compareCompressed(const sylva::datasets::VictoriaParkData& data, const Conf
                {"mean_difference", mean_difference},
                {"covariance_difference", covariance_difference},
                {"agree", agree}};
-  if (!json)
-    std::cout << std::fixed << std::setprecision(2) << name << ": plain " << plain.runtime_s << " s, compressed "
-              << compressed.runtime_s << " s (" << compressed.runtime_s / plain.runtime_s << "x; "
-              << compressed.global_updates << " global updates) | " << plain.landmarks << " landmarks"
-              << (same_landmarks ? ", the same ids" : ", DIFFERENT ids") << std::scientific
-              << " | final state: mean differs by " << mean_difference << ", covariance by " << covariance_difference
-              << " of their largest entries: " << (agree ? "agree" : "DIFFER") << "\n";
   return agree;
 }
 
@@ -263,11 +242,10 @@ int main(int argc, char** argv) {
     const auto report = [&](auto variant, const char* name, const char* title) {
       using V = decltype(variant);
       if (compare_compressed) {
-        agree = compareCompressed<V>(data, cfg, valid, name, json, out) && agree;
+        agree = compareCompressed<V>(data, cfg, valid, name, out) && agree;
         return;
       }
       const RunResult r = runSlam<V>(data, cfg, valid);
-      if (!json) printTable(r);
       out[name] = toJson(r);
       if (!svg_prefix.empty()) writeSvg(svg_prefix + "_" + name + ".svg", r, data.gps, valid, title);
       if (!errors_csv.empty()) {
@@ -280,14 +258,11 @@ int main(int argc, char** argv) {
         const Study s = robustness<V>(data, cfg, valid, threads);
         out[name]["robustness"] = {{"settings", s.rmse.size()}, {"diverged_over_5m", s.diverged},
                                    {"median_gps_rmse_m", s.median}, {"worst_gps_rmse_m", s.worst}, {"runs", s.runs}};
-        if (!json)
-          std::cout << "  robustness (" << s.rmse.size() << " settings): " << s.diverged << " diverged (> 5 m), median "
-                    << s.median << " m, worst " << s.worst << " m\n";
       }
     };
     if (variants != "tree") report(PointVariant{}, "point", "Victoria Park, EKF-SLAM with point landmarks (range, bearing)");
     if (variants != "point") report(TreeVariant{}, "tree", "Victoria Park, EKF-SLAM with tree landmarks (range, bearing, diameter)");
-    if (json) std::cout << out.dump(2) << "\n";
+    sylva_examples::writeResult(std::cout, json, "victoria_park: EKF-SLAM on the Victoria Park recording", out);
     if (!agree) return 1;
   } catch (const sylva::Error& e) {
     std::cerr << "victoria_park: " << e.what() << "\n";
