@@ -16,18 +16,17 @@
 // Without data at --data the program says where to get it and exits with status 77.
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
-#include <thread>
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
 #include "../common/cli_checks.hpp"
 #include "../common/report.hpp"
+#include "../common/run_pool.hpp"
 #include "config.hpp"
 #include "gps_error.hpp"
 #include "slam_run.hpp"
@@ -94,14 +93,9 @@ Study robustness(const sylva::datasets::VictoriaParkData& data, const Config& ba
           settings.push_back(cfg);
           exponents.push_back({a, b, c, d});
         }
-  std::vector<RunResult> results(settings.size());
-  std::atomic<std::size_t> next{0};
-  std::vector<std::thread> pool;
-  for (int t = 0; t < threads; ++t)
-    pool.emplace_back([&] {
-      for (std::size_t i = next++; i < settings.size(); i = next++) results[i] = runSlam<V>(data, settings[i], valid);
-    });
-  for (auto& t : pool) t.join();
+  const std::vector<RunResult> results = sylva_examples::runAll<RunResult>(
+      static_cast<int>(settings.size()), threads,
+      [&](int i) { return runSlam<V>(data, settings[static_cast<std::size_t>(i)], valid); }, false);
   Study s;
   for (std::size_t i = 0; i < results.size(); ++i) {
     const double e = results[i].gps.rmse_valid_m;
