@@ -1,5 +1,5 @@
-// Fuzz target: the leg_tracker recording loader of examples/moving_objects
-// (loadLegTrackerRecording: a "key value" parameter file and a CSV of scans).
+// Fuzz target: the leg_tracker recording loader, sylva::datasets::loadLegTrackerRecording
+// (a "key value" parameter file and a CSV of scans).
 //
 // Input: rec_scan_params.txt @ rec_scans.csv (a file without a part is missing).
 
@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <string>
 
-#include "moving_objects/leg_tracker_data.hpp"
+#include <sylva/datasets/leg_tracker.hpp>
 
 #include "fuzz_common.hpp"
 
@@ -17,7 +17,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   static const Scratch dir("leg_tracker");
   writeFiles(dir, {"rec_scan_params.txt", "rec_scans.csv"}, split(asText(data, size), 2));
   return run([&] {
-    const moving_objects::RealScans scans = moving_objects::loadLegTrackerRecording(dir.path().string(), "rec");
+    const sylva::datasets::LegTrackerRecording scans = sylva::datasets::loadLegTrackerRecording(dir.path().string(), "rec");
     const sylva::LaserScanGeometry& g = scans.geometry;
     require(g.beams >= 2 && g.beams <= 100000, "the beam count is out of bounds");
     require(std::isfinite(g.angle_min_rad) && g.angle_increment_rad > 0.0 && g.min_range_m >= 0.0 &&

@@ -69,7 +69,7 @@ sylva_install_packages "${packages[@]}"
 # ---- build -------------------------------------------------------------------------------
 cxxflags=(-std=c++17 -g -O1 -fno-omit-frame-pointer -fsanitize=fuzzer,address,undefined
           -fno-sanitize-recover=all -D_GLIBCXX_ASSERTIONS -Wall -Wextra -Wpedantic -Wshadow
-          -I"$repo/include" -I"$repo/examples")
+          -I"$repo/include")
 read -r -a eigen_flags <<<"$(pkg-config --cflags eigen3)"
 mkdir -p "$build/bin"
 for t in "${targets[@]}"; do

@@ -27,8 +27,8 @@ LOADERS = {
                     "odometry, measurements, ground truth of the robots asked for)",
     "victoria_park": "`loadVictoriaParkMeasurements`, `loadVictoriaParkOdometry`, "
                      "`loadVictoriaParkGps` and the folder loader `loadVictoriaPark`",
-    "leg_tracker": "`moving_objects::loadLegTrackerRecording` (examples/moving_objects): the scan "
-                   "parameter file and the CSV of scans",
+    "leg_tracker": "`sylva::datasets::loadLegTrackerRecording`: the scan parameter file and the "
+                   "CSV of scans",
 }
 # Files libFuzzer writes for a finding (-artifact_prefix).
 ARTIFACT = re.compile(r"^(crash|leak|timeout|oom)-")

@@ -1,7 +1,7 @@
 // laser_camera_slam: 2D EKF-SLAM in a simulated office corridor with three kinds of point
 // landmarks, compared on the same run (multisensor thesis, Amarasinghe 2008, Ch. 3):
 //
-//   laser_corners  corners extracted from the laser scan (corners.hpp);
+//   laser_corners  corners extracted from the laser scan (sylva/laser/corner_features.hpp);
 //   laser_camera   vertical lines seen by the camera, ranged by the laser
 //                  (sylva::LaserCameraSensor, Sec. 3.3: calibration curve, eq. 3.4, eq. 3.5);
 //   fused          both (a laser-camera point within 0.3 m of a corner of the same scan is

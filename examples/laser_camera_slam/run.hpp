@@ -13,13 +13,13 @@
 #include <vector>
 
 #include <sylva/consistency.hpp>
+#include <sylva/laser/corner_features.hpp>
 #include <sylva/laser_camera.hpp>
 #include <sylva/sim.hpp>
 #include <sylva/sylva.hpp>
 #include <sylva/slam/front_end.hpp>
 #include <sylva/slam/reach.hpp>
 
-#include "corners.hpp"
 #include "indoor_world.hpp"
 
 namespace laser_camera_slam {
@@ -183,7 +183,7 @@ inline Simulation simulate(const Options& o) {
     scanner.scan(step.true_pose, sim.world.walls, rng, scan);
     camera.observe(step.true_pose, sim.world.edges, sim.world.walls, rng, detections);
     d.lines_detected = static_cast<int>(detections.size());
-    for (const Corner& c : extractCorners(scan.ranges_m, geometry))
+    for (const sylva::laser::CornerFeature& c : sylva::laser::extractCornerFeatures(scan.ranges_m, geometry))
       d.corners.push_back({c.z, c.covariance, nearestEdge(sim.world, toWorld(step.true_pose, c.z))});
     for (const auto& det : detections) {
       const sylva::LaserCameraMeasurement m = sensor.measure(det.line, scan.ranges_m);

@@ -43,6 +43,7 @@
 
 #include <sylva/consistency/chi_square.hpp>
 #include <sylva/core/error.hpp>
+#include <sylva/datasets/leg_tracker.hpp>
 #include <sylva/laser/moving_object_detector.hpp>
 #include <sylva/laser/object_tracker.hpp>
 #include <sylva/sim/laser_scanner_2d.hpp>
@@ -53,7 +54,6 @@
 #include "cases.hpp"
 #include "evaluation.hpp"
 #include "figures.hpp"
-#include "leg_tracker_data.hpp"
 #include "scenes.hpp"
 #include "slam_run.hpp"
 
@@ -510,7 +510,7 @@ struct RealReport {
 
 /// Per beam: the static background range (75th percentile of the valid readings) when the
 /// beam reads valid in at least half of the scans, else +infinity (open space).
-std::vector<double> backgroundModel(const moving_objects::RealScans& data) {
+std::vector<double> backgroundModel(const sylva::datasets::LegTrackerRecording& data) {
   const LaserScanGeometry& g = data.geometry;
   std::vector<double> background(static_cast<std::size_t>(g.beams), std::numeric_limits<double>::infinity());
   for (int b = 0; b < g.beams; ++b) {
@@ -540,7 +540,7 @@ int runReal(const Options& o, const DetectorOptions& detector_options, const std
                  "format of docs/examples/moving-objects.md, and pass its folder with --data DIR.\n";
     return kSkipped;
   }
-  RealScans data = loadLegTrackerRecording(o.data, name);
+  sylva::datasets::LegTrackerRecording data = sylva::datasets::loadLegTrackerRecording(o.data, name);
   if (o.real_max_scans > 0 && static_cast<int>(data.ranges.size()) > o.real_max_scans) {
     data.ranges.resize(static_cast<std::size_t>(o.real_max_scans));
     data.stamps_s.resize(static_cast<std::size_t>(o.real_max_scans));

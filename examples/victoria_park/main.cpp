@@ -4,7 +4,7 @@
 // Two variants on the same data and the same declared configuration (config.hpp):
 //   point  Ekf<Ackermann2D, Point2>   with RangeBearing         (range, bearing)
 //   tree   Ekf<Ackermann2D, TreeXYR>  with RangeBearingDiameter (range, bearing, diameter)
-// The run is described in slam_run.hpp, the GPS comparison in gps_error.hpp, and the whole
+// The run is described in slam_run.hpp, the GPS comparison in sylva/datasets/victoria_park_gps.hpp, and the whole
 // example in docs/examples/victoria-park.md.
 //
 // Output: one result per variant as text (examples/common/report.hpp), or with --json as
@@ -28,7 +28,6 @@
 #include "../common/report.hpp"
 #include "../common/run_pool.hpp"
 #include "config.hpp"
-#include "gps_error.hpp"
 #include "slam_run.hpp"
 #include "svg.hpp"
 
@@ -228,7 +227,7 @@ int main(int argc, char** argv) {
   }
   try {
     const auto data = sylva::datasets::loadVictoriaPark(data_dir);
-    const std::vector<char> valid = validGpsFixes(data.gps, data.odometry, cfg.wheelbase_m, cfg.encoder_offset_m);
+    const std::vector<char> valid = sylva::datasets::validVictoriaParkGpsFixes(data.gps, data.odometry, cfg.wheelbase_m, cfg.encoder_offset_m);
     nlohmann::json out;
     out["config"] = toJson(cfg);
     out["data"] = data_dir;

@@ -33,6 +33,7 @@
 #include <vector>
 
 #include <sylva/datasets/victoria_park.hpp>
+#include <sylva/datasets/victoria_park_gps.hpp>
 #include <sylva/filter/compression.hpp>
 #include <sylva/filter/ekf.hpp>
 #include <sylva/landmarks.hpp>
@@ -43,13 +44,13 @@
 #include <sylva/slam/reach.hpp>
 
 #include "config.hpp"
-#include "gps_error.hpp"
 
 namespace victoria_park {
 
 using sylva::Gaussian;
 using sylva::Id;
 using sylva::Mat;
+using sylva::Vec;
 namespace ds = sylva::datasets;
 
 struct PointVariant {
@@ -86,7 +87,7 @@ struct MapLandmark {
 
 struct RunResult {
   std::string variant;
-  GpsError gps;
+  ds::VictoriaParkGpsError gps;
   int landmarks = 0;
   long scans = 0;
   long predictions = 0;
@@ -99,7 +100,7 @@ struct RunResult {
   double runtime_s = 0.0;
   double step_ms_end = 0.0;    ///< mean time per scan over the last 100 scans
   double step_ms_mean = 0.0;
-  std::vector<TimedPoint> laser_path;  ///< in the GPS frame after alignment
+  std::vector<ds::TimedPosition> laser_path;  ///< in the GPS frame after alignment
   std::vector<MapLandmark> map;        ///< in the GPS frame after alignment
   // With bias states: the final estimates and their standard deviations (else NaN).
   double speed_scale = std::nan("");
@@ -236,7 +237,7 @@ RunResult runSlamWith(const ds::VictoriaParkData& data, const Config& cfg, const
 
   RunResult out;
   out.variant = V::kName;
-  std::vector<TimedPoint> path;
+  std::vector<ds::TimedPosition> path;
   std::vector<double> step_ms;
   std::vector<sylva::slam::Reading<M>> readings;
   const double t_start = data.scans.front().t_s;
@@ -260,7 +261,7 @@ RunResult runSlamWith(const ds::VictoriaParkData& data, const Config& cfg, const
     out.refused_updates += report.count(Outcome::kRefused);
 
     const Vec<3> xr = ekf.robotMean().template head<3>();
-    path.push_back(TimedPoint{scan.t_s, sylva::RangeBearing(mount).sensorPosition<double>(xr)});
+    path.push_back(ds::TimedPosition{scan.t_s, sylva::RangeBearing(mount).sensorPosition<double>(xr)});
     step_ms.push_back(std::chrono::duration<double, std::milli>(Clock::now() - step_begin).count());
   }
   out.runtime_s = std::chrono::duration<double>(Clock::now() - run_begin).count();
@@ -271,9 +272,9 @@ RunResult runSlamWith(const ds::VictoriaParkData& data, const Config& cfg, const
   out.step_ms_mean = step_ms.empty() ? 0.0 : 1e3 * out.runtime_s / static_cast<double>(step_ms.size());
   out.landmarks = ekf.landmarkCount();
 
-  out.gps = gpsError(path, data.gps, gps_valid);
+  out.gps = ds::victoriaParkGpsError(path, data.gps, gps_valid);
   const auto toGps = [&](const Vec<2>& p) { return out.gps.transform(p); };
-  for (const TimedPoint& tp : path) out.laser_path.push_back(TimedPoint{tp.t_s, toGps(tp.p)});
+  for (const ds::TimedPosition& tp : path) out.laser_path.push_back(ds::TimedPosition{tp.t_s, toGps(tp.p)});
   for (const sylva::LandmarkSlot& s : ekf.slots()) {
     const auto l = ekf.template landmarkMean<typename V::Landmark>(s.id);
     out.map.push_back(MapLandmark{toGps(l.template head<2>()), V::radius(l), front_end.sightings(s.id)});

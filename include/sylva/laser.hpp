@@ -2,9 +2,10 @@
 /// @file
 /// Umbrella header of the laser scan tools: scans placed in the world by their sensor pose,
 /// continuous segments, the moving-object detector of the multisensor thesis (Ch. 4), object
-/// positions and tracks, and pole-like point features for range-bearing SLAM. They need only
-/// `sylva/core`; nothing in the filter depends on them.
+/// positions and tracks, and point features for range-bearing SLAM (poles and corners). They
+/// need only `sylva/core`; nothing in the filter depends on them.
 // IWYU pragma: begin_exports
+#include "sylva/laser/corner_features.hpp"
 #include "sylva/laser/moving_object_detector.hpp"
 #include "sylva/laser/object_position.hpp"
 #include "sylva/laser/object_tracker.hpp"

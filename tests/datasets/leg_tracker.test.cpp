@@ -9,9 +9,9 @@
 #include <fstream>
 #include <string>
 
-#include "moving_objects/leg_tracker_data.hpp"
+#include <sylva/datasets/leg_tracker.hpp>
 
-namespace unity_moving_objects_leg_tracker_data {
+namespace unity_datasets_leg_tracker {
 
 using sylva_test::contains;
 using sylva_test::TempFolder;
@@ -32,7 +32,7 @@ std::string loadError(const TempFolder& dir, const std::string& csv) {
   dir.write("rec_scan_params.txt", kParams);
   dir.write("rec_scans.csv", csv);
   try {
-    moving_objects::loadLegTrackerRecording(dir.path.string(), "rec");
+    sylva::datasets::loadLegTrackerRecording(dir.path.string(), "rec");
   } catch (const sylva::Error& e) {
     if (e.code() != sylva::ErrorCode::kMalformedData) return "wrong code";
     return e.what();
@@ -40,11 +40,11 @@ std::string loadError(const TempFolder& dir, const std::string& csv) {
   return "";
 }
 
-}  // namespace unity_moving_objects_leg_tracker_data
+}  // namespace unity_datasets_leg_tracker
 
-using namespace unity_moving_objects_leg_tracker_data;
+using namespace unity_datasets_leg_tracker;
 
-TEST_CASE("leg_tracker loader: parameters and scans, inf and nan included", "[moving_objects][data]") {
+TEST_CASE("leg_tracker loader: parameters and scans, inf and nan included", "[datasets][leg_tracker]") {
   const TempFolder dir("good");
   dir.write("rec_scan_params.txt", kParams);
   dir.write("rec_scans.csv",
@@ -52,7 +52,7 @@ TEST_CASE("leg_tracker loader: parameters and scans, inf and nan included", "[mo
             "100.1,1.1,1.2,1.3,INF\r\n"
             "\n"
             "100.2, 0.5 ,5.0,-inf,3\n");
-  const auto data = moving_objects::loadLegTrackerRecording(dir.path.string(), "rec");
+  const auto data = sylva::datasets::loadLegTrackerRecording(dir.path.string(), "rec");
   CHECK(data.geometry.beams == 4);
   CHECK(data.geometry.angle_min_rad == -1.5);
   CHECK(data.geometry.angle_increment_rad == 1.0);
@@ -67,7 +67,7 @@ TEST_CASE("leg_tracker loader: parameters and scans, inf and nan included", "[mo
   CHECK(data.ranges[2][3] == 3.0);
 }
 
-TEST_CASE("leg_tracker loader: a malformed line is reported with file name and line number", "[moving_objects][data]") {
+TEST_CASE("leg_tracker loader: a malformed line is reported with file name and line number", "[datasets][leg_tracker]") {
   const TempFolder dir("bad");
   const std::string ok = "100.0,1,2,3,4\n";
   std::string e = loadError(dir, ok + "100.1,1,2,x3,4\n");
@@ -86,12 +86,12 @@ TEST_CASE("leg_tracker loader: a malformed line is reported with file name and l
   CHECK(loadError(dir, ok) == "");
 }
 
-TEST_CASE("leg_tracker loader: bad parameter files and missing files", "[moving_objects][data]") {
+TEST_CASE("leg_tracker loader: bad parameter files and missing files", "[datasets][leg_tracker]") {
   const TempFolder dir("params");
   const auto paramsError = [&](const std::string& text) {
     const std::string path = dir.write("p.txt", text);
     try {
-      moving_objects::loadScanParams(path);
+      sylva::datasets::loadLegTrackerScanParams(path);
     } catch (const sylva::Error& e) {
       return e.code() == sylva::ErrorCode::kMalformedData ? std::string(e.what()) : std::string("wrong code");
     }
@@ -103,6 +103,6 @@ TEST_CASE("leg_tracker loader: bad parameter files and missing files", "[moving_
   CHECK(contains(paramsError("angle_min -1\nangle_increment 0.1\nn_beams 10.5\nrange_min 0.1\nrange_max 5\n"), "n_beams"));
   CHECK(contains(paramsError("angle_min -1\nangle_increment -0.1\nn_beams 10\nrange_min 0.1\nrange_max 5\n"), "increment"));
   CHECK(paramsError("angle_min -1\nangle_increment 0.1\nn_beams 10\nrange_min 0.1\nrange_max 5\n") == "");
-  CHECK(sylva_test::throwsCode([&] { moving_objects::loadLegTrackerRecording((dir.path / "absent").string(), "rec"); },
+  CHECK(sylva_test::throwsCode([&] { sylva::datasets::loadLegTrackerRecording((dir.path / "absent").string(), "rec"); },
                                sylva::ErrorCode::kMalformedData));
 }
