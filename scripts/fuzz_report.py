@@ -29,6 +29,8 @@ LOADERS = {
                      "`loadVictoriaParkGps` and the folder loader `loadVictoriaPark`",
     "leg_tracker": "`sylva::datasets::loadLegTrackerRecording`: the scan parameter file and the "
                    "CSV of scans",
+    "trunk_detections": "`sylva::datasets::readTrunkDetections` and `readCameraIntrinsics`: a "
+                        "trunk detector's per-frame CSV and the camera's intrinsics",
 }
 # Files libFuzzer writes for a finding (-artifact_prefix).
 ARTIFACT = re.compile(r"^(crash|leak|timeout|oom)-")
