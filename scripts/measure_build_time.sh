@@ -1,13 +1,13 @@
 #!/usr/bin/env bash
 # Measures how long the tests and examples take to build from a clean tree, per translation
-# unit, and writes it as JSON for docs/benchmarks.md (scripts/run_benchmarks.sh calls this).
+# unit, and writes it as JSON for docs/clean-build.md (scripts/clean_build_report.sh calls this).
 #
 #   bash scripts/measure_build_time.sh [OUT_JSON]      (default: build/build-times.json)
 #   bash scripts/measure_build_time.sh --tree REV [OUT_JSON]
 #                                                      the same for the repository's tree at
 #                                                      commit REV (git archive), built by this
 #                                                      script: a reference for a comparison in
-#                                                      the same sitting (run_benchmarks.sh)
+#                                                      the same sitting (clean_build_report.sh)
 #
 # A fresh Ninja build directory in a temporary folder, Release, tests and examples (the
 # benchmarks are left out: they are what is being measured elsewhere), the default C++

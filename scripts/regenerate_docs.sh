@@ -9,7 +9,8 @@
 #                                              quoted figure, and checks the pages (a few minutes)
 #   bash scripts/regenerate_docs.sh --pages    also reruns the generators of the long pages first:
 #                                              the study (docs/results.md, about an hour on 2 cores),
-#                                              consistency, forest seeds, real data, benchmarks
+#                                              consistency, forest seeds, real data, benchmarks,
+#                                              the clean build
 #   bash scripts/regenerate_docs.sh --quick    CI: runs each figure source in a reduced
 #                                              configuration into a temporary folder, checks that it
 #                                              gives the figures the pages quote (same names), and
@@ -70,6 +71,7 @@ if ((pages)); then
   python3 "$repo/scripts/forest_slam_seeds.py" --build-dir "$(dirname "$bin_dir")"
   bash "$repo/scripts/real_data_report.sh"
   bash "$repo/scripts/run_benchmarks.sh"
+  bash "$repo/scripts/clean_build_report.sh"
 fi
 "${figures[@]}" run --bin-dir "$bin_dir"
 "${figures[@]}" update

@@ -1,33 +1,26 @@
 #!/usr/bin/env bash
 # Regenerates docs/benchmarks.md (and docs/images/benchmarks_step.svg) and
 # docs/update-benchmarks.md (and docs/update-benchmarks.svg):
-#   1. the build time of tests and examples from a clean tree, once with the system's c++
-#      (g++ on Debian) and once with clang++ (what CI uses) (scripts/measure_build_time.sh;
-#      SKIP_BUILD_TIME=1 leaves it out and keeps the last JSON if there is one), and with c++
-#      once more for the tree issue 18 was filed against (BUILD_TIME_REFERENCE, default
-#      90b83a7, whose docs/benchmarks.md recorded 928 s; empty: not built), in the same
-#      sitting, for that issue's build-time criterion,
-#   2. a Release build of the benchmarks with -march=native in BUILD_DIR (default
+#   1. a Release build of the benchmarks with -march=native in BUILD_DIR (default
 #      build-bench-native; CXX picks the compiler at the first configure, default clang++ when
 #      installed: Eigen's AVX-512 kernels run about 1.6x faster with clang++ 14 than with
 #      g++ 12 on the machine these were written on, and the report names the compiler),
-#   3. bench_slam_step (the circle world's step against N, the read/write bounds and the GEMM
+#   2. bench_slam_step (the circle world's step against N, the read/write bounds and the GEMM
 #      peak in one run), bench_forest_slam (the monocular frame split) and bench_ekf_update
 #      (single updates, update forms), with repetitions and random interleaving,
-#   4. the side-by-side run with MRPT (scripts/run_peer_benchmarks.sh, which installs Debian's
+#   3. the side-by-side run with MRPT (scripts/run_peer_benchmarks.sh, which installs Debian's
 #      libmrpt-dev; SKIP_PEERS=1 leaves it out, and the report then says MRPT was not run),
-#   5. the reports: scripts/step_report.py and scripts/bench_report.py,
-#   6. the compressed EKF's page (scripts/compressed_report.sh, a baseline build of its own;
+#   4. the reports: scripts/step_report.py and scripts/bench_report.py,
+#   5. the compressed EKF's page (scripts/compressed_report.sh, a baseline build of its own;
 #      SKIP_COMPRESSED=1 leaves it out).
 # Raw JSON stays in the build directories; only the reports are committed.
 #
 # Usage: bash scripts/run_benchmarks.sh [BUILD_DIR]
-# Environment: REPETITIONS (default 5), JOBS (build jobs, default 2), SKIP_BUILD_TIME,
-# BUILD_TIME_REFERENCE, SKIP_PEERS, SKIP_COMPRESSED.
+# Environment: REPETITIONS (default 5), JOBS (build jobs, default 2), SKIP_PEERS, SKIP_COMPRESSED.
+# The build time of the tests and examples has a script and page of its own:
+# scripts/clean_build_report.sh, docs/clean-build.md.
 # On a 2-core machine (2026-11-30): bench_slam_step alone took 36 minutes with its 5
-# repetitions, and the whole run without the build time (SKIP_BUILD_TIME=1) about an hour. The
-# build time adds two clean builds: g++ 12 spent more than 35 CPU-minutes on the unity unit
-# of tests/filter alone.
+# repetitions, and the whole run about an hour.
 set -euo pipefail
 
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -41,18 +34,6 @@ source "${root}/scripts/lib/install_packages.sh"
 source "${root}/scripts/lib/prefer_clang.sh"
 sylva_install_packages build-essential cmake ninja-build clang libeigen3-dev libbenchmark-dev \
   libcli11-dev nlohmann-json3-dev catch2 libboost-math-dev gnuplot-nox python3
-
-if [[ "${SKIP_BUILD_TIME:-0}" != 1 ]]; then
-  echo "==> build time of tests and examples from a clean tree (system c++, then clang++)"
-  CXX= bash "${root}/scripts/measure_build_time.sh" "${root}/build/build-times.json"
-  rm -f "${root}/build/build-times-reference.json"
-  reference="${BUILD_TIME_REFERENCE-90b83a7}"
-  if [[ -n "$reference" ]]; then
-    echo "==> the same for the tree issue 18 was filed against (${reference}, system c++)"
-    CXX= bash "${root}/scripts/measure_build_time.sh" --tree "$reference" "${root}/build/build-times-reference.json"
-  fi
-  CXX=clang++ bash "${root}/scripts/measure_build_time.sh" "${root}/build/build-times-clang.json"
-fi
 
 sylva_prefer_clang "${build_dir}"
 cmake -S "${root}" -B "${build_dir}" -DCMAKE_BUILD_TYPE=Release -DSYLVA_NATIVE=ON \
@@ -78,16 +59,8 @@ if [[ "${SKIP_PEERS:-0}" != 1 ]]; then
              --peers-baseline "${root}"/build-peers/bench/peers_baseline_*.json)
 fi
 
-build_times=()
-for f in "${root}/build/build-times.json" "${root}/build/build-times-clang.json"; do
-  if [[ -f "$f" ]]; then build_times+=("$f"); fi
-done
-if ((${#build_times[@]})); then build_times=(--build-times "${build_times[@]}"); fi
-if [[ -f "${root}/build/build-times-reference.json" ]]; then
-  build_times+=(--build-time-reference "${root}/build/build-times-reference.json")
-fi
 python3 "${root}/scripts/step_report.py" --step "${build_dir}/bench_slam_step.json" \
-  --forest "${build_dir}/bench_forest_slam.json" "${peer_args[@]}" "${build_times[@]}" \
+  --forest "${build_dir}/bench_forest_slam.json" "${peer_args[@]}" \
   --out "${root}/docs/benchmarks.md" --plot "${root}/docs/images/benchmarks_step.svg" \
   --command "bash scripts/run_benchmarks.sh"
 python3 "${root}/scripts/bench_report.py" "${build_dir}/bench_ekf_update.json" \
