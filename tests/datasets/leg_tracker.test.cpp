@@ -31,13 +31,8 @@ const char* kParams =
 std::string loadError(const TempFolder& dir, const std::string& csv) {
   dir.write("rec_scan_params.txt", kParams);
   dir.write("rec_scans.csv", csv);
-  try {
-    sylva::datasets::loadLegTrackerRecording(dir.path.string(), "rec");
-  } catch (const sylva::Error& e) {
-    if (e.code() != sylva::ErrorCode::kMalformedData) return "wrong code";
-    return e.what();
-  }
-  return "";
+  return sylva_test::errorMessage([&] { sylva::datasets::loadLegTrackerRecording(dir.path.string(), "rec"); },
+                                  sylva::ErrorCode::kMalformedData);
 }
 
 }  // namespace unity_datasets_leg_tracker
@@ -90,12 +85,8 @@ TEST_CASE("leg_tracker loader: bad parameter files and missing files", "[dataset
   const TempFolder dir("params");
   const auto paramsError = [&](const std::string& text) {
     const std::string path = dir.write("p.txt", text);
-    try {
-      sylva::datasets::loadLegTrackerScanParams(path);
-    } catch (const sylva::Error& e) {
-      return e.code() == sylva::ErrorCode::kMalformedData ? std::string(e.what()) : std::string("wrong code");
-    }
-    return std::string();
+    return sylva_test::errorMessage([&] { sylva::datasets::loadLegTrackerScanParams(path); },
+                                    sylva::ErrorCode::kMalformedData);
   };
   CHECK(contains(paramsError("angle_min -1\nangle_increment 0.1\nn_beams 10\nrange_min 0.1\n"), "missing key 'range_max'"));
   CHECK(contains(paramsError("angle_min -1\nangle_increment zero\n"), "p.txt:2: the value of 'angle_increment' is not a number"));

@@ -22,13 +22,7 @@ namespace ds = sylva::datasets;
 template <typename Load>
 std::string loadError(const TempFolder& dir, const std::string& name, const std::string& text, Load load) {
   const std::string path = dir.write(name, text);
-  try {
-    load(path);
-  } catch (const sylva::Error& e) {
-    if (e.code() != sylva::ErrorCode::kMalformedData) return "wrong code";
-    return e.what();
-  }
-  return "";
+  return sylva_test::errorMessage([&] { load(path); }, sylva::ErrorCode::kMalformedData);
 }
 
 }  // namespace unity_datasets_victoria_park
