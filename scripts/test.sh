@@ -13,6 +13,9 @@
 #                                        runs their smoke runs and the repository checks, but
 #                                        not the unit tests: CI's split (.ci/run), which
 #                                        builds and runs the unit tests under the sanitizers
+#   bash scripts/test.sh --no-python     leaves out the Python package (built by default: pip
+#                                        install of python/ into a virtual environment with
+#                                        Debian's python3, then pytest python/tests)
 #   bash scripts/test.sh --overlap       runs the Release phase (then the consumer) beside
 #                                        the sanitizer phase, each build with half the jobs,
 #                                        instead of one after the other (each line of output
@@ -37,12 +40,14 @@ usage() { sed -n '2,32p' "$0" | sed 's/^# \{0,1\}//'; }
 run_main=1
 run_sanitize=0
 run_consumer=0
+run_python=1
 overlap=0
 unit_tests=ON
 for arg in "$@"; do
   case "$arg" in
     --sanitize) run_sanitize=1 ;;
     --consumer) run_consumer=1 ;;
+    --no-python) run_python=0 ;;
     --skip-main) run_main=0 ;;
     --examples-only) unit_tests=OFF ;;
     --overlap) overlap=1 ;;
@@ -67,6 +72,10 @@ packages=(build-essential cmake libeigen3-dev catch2 libcli11-dev nlohmann-json3
 # The sanitizer build uses clang (and its sanitizer runtimes): see the phase below.
 if ((run_sanitize)) && [[ -z "${SYLVA_SANITIZE_CXX:-}" ]]; then packages+=(clang libclang-rt-dev); fi
 if ((run_main)) && [[ "${SYLVA_CXX:-}" == clang++* ]]; then packages+=(clang); fi
+# The Python package: pybind11 and numpy from Debian, for Debian's interpreter.
+if ((run_python)); then
+  packages+=(python3-dev python3-venv python3-pybind11 pybind11-dev python3-numpy python3-pytest)
+fi
 # shellcheck source=lib/install_packages.sh
 source "$repo/scripts/lib/install_packages.sh"
 sylva_install_packages "${packages[@]}"
@@ -166,6 +175,32 @@ consumer_phase() {
   finish "install + tests/consumer" "consumer passed"
 }
 
+# ---- the Python package -------------------------------------------------------------------
+# The README's Python commands: a virtual environment of Debian's python3 that sees its
+# system packages (numpy, pybind11, pytest from apt; Debian 12 refuses pip installs into the
+# system itself), pip install of python/ without network or build isolation, then pytest.
+# SYLVA_PYTHON (default /usr/bin/python3, Debian's interpreter, for which apt installed the
+# packages) makes the environment. The extension is compiled by SYLVA_CXX's compiler when it
+# is clang++ (g++ otherwise), with $python_jobs jobs.
+python_jobs="$jobs"
+python_phase() {
+  begin "Python package (pip install ./python, pytest python/tests)"
+  local venv="$build_root/python-venv"
+  "${SYLVA_PYTHON:-/usr/bin/python3}" -m venv --system-site-packages "$venv"
+  local compilers=()
+  if [[ "${SYLVA_CXX:-}" == clang++* ]]; then compilers=(CC=clang CXX=clang++); fi
+  (cd "$repo" && env -u MAKEFLAGS "${compilers[@]}" SYLVA_JOBS="$python_jobs" \
+    "$venv/bin/pip" install --no-build-isolation --no-index --no-deps ./python)
+  # From the repository's root, as the README says: run from python/, `python -m pytest` would
+  # import the package's sources (no compiled module) ahead of the installed package. With the
+  # Release phase's examples at hand, the tests also compare the Python study's output with
+  # the C++ program's (SYLVA_EXAMPLES_BIN); without them those cases say they skipped.
+  local examples=()
+  if [[ -d "$build_root/test/examples" ]]; then examples=(SYLVA_EXAMPLES_BIN="$build_root/test/examples"); fi
+  (cd "$repo" && env "${examples[@]}" "$venv/bin/python" -m pytest -q -rs python/tests) 2>&1 | tee "$build_root/pytest-output.log"
+  finish "Python package" "$(grep -E ' passed| failed' "$build_root/pytest-output.log" | tail -n 1)"
+}
+
 # Prefixes each line of a phase's output with its name (--overlap interleaves two phases).
 label() { sed -u "s/^/[$1] /"; }
 
@@ -201,7 +236,8 @@ if ((overlap && run_main && (run_sanitize || run_consumer))); then
   hand_over_job() { if [[ -n "$jobserver_fd" ]]; then printf '+' >&"$jobserver_fd"; fi; }
   ( trap hand_over_job EXIT
     main_phase 2>&1 | label release
-    if ((run_consumer)); then consumer_phase 2>&1 | label consumer; fi ) &
+    if ((run_consumer)); then consumer_phase 2>&1 | label consumer; fi
+    if ((run_python)); then python_jobs=1; python_phase 2>&1 | label python; fi ) &
   main_pid=$!
   ( trap hand_over_job EXIT
     if ((run_sanitize)); then sanitize_phase; fi ) 2>&1 | label sanitize &
@@ -219,6 +255,7 @@ else
   if ((run_main)); then main_phase; fi
   if ((run_sanitize)); then sanitize_phase; fi
   if ((run_consumer)); then consumer_phase; fi
+  if ((run_python)); then python_phase; fi
 fi
 
 echo
