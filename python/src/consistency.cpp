@@ -7,6 +7,7 @@
 #include "sylva/consistency/chi_square.hpp"
 #include "sylva/consistency/monte_carlo.hpp"
 #include "sylva/consistency/nees.hpp"
+#include "sylva/consistency/paired_tests.hpp"
 
 #include "arrays.hpp"
 #include "models.hpp"
@@ -85,6 +86,62 @@ void bindConsistency(py::module_& m) {
            &sylva::NeesSeries::fractionInside,
            py::arg("confidence") = 0.95,
            "The share of steps whose run average lies inside bounds(confidence).");
+
+  using Ensemble = sylva::NeesEnsemble;
+  py::class_<Ensemble::Summary>(m, "NeesSummary", "What NeesEnsemble.summary() reports.")
+      .def_readonly("mean", &Ensemble::Summary::mean, "mean over steps of the ensemble average")
+      .def_readonly("median_run",
+                    &Ensemble::Summary::median_run,
+                    "median over runs of each run's time average")
+      .def_readonly("lower", &Ensemble::Summary::lower)
+      .def_readonly("upper", &Ensemble::Summary::upper)
+      .def_readonly("fraction_inside", &Ensemble::Summary::fraction_inside)
+      .def_readonly("runs", &Ensemble::Summary::runs)
+      .def_readonly("dof", &Ensemble::Summary::dof);
+  py::class_<Ensemble>(
+      m,
+      "NeesEnsemble",
+      "NEES (or NIS) of each run of a Monte Carlo ensemble at each step; a diverged run may record "
+      "inf, which the median over runs tolerates.")
+      .def(py::init<int>(), py::arg("dof"))
+      .def("add", &Ensemble::add, py::arg("run"), py::arg("step"), py::arg("value"))
+      .def_property_readonly("dof", &Ensemble::dof)
+      .def("step_averages",
+           [](const Ensemble& e) {
+             const auto a = e.stepAverages();
+             return py::array_t<double>(static_cast<py::ssize_t>(a.size()), a.data());
+           })
+      .def("run_averages",
+           [](const Ensemble& e) {
+             const auto a = e.runAverages();
+             return py::array_t<double>(static_cast<py::ssize_t>(a.size()), a.data());
+           })
+      .def("summary", &Ensemble::summary, py::arg("confidence") = 0.95);
+
+  m.def("mcnemar_exact",
+        &sylva::mcnemarExact,
+        py::arg("a_only"),
+        py::arg("b_only"),
+        "Two-sided exact McNemar p-value of paired successes: a_only pairs where only A succeeded, "
+        "b_only where only B "
+        "did.");
+  py::class_<sylva::SignedRankResult>(m, "SignedRankResult", "The result of wilcoxon_signed_rank.")
+      .def_readonly("n", &sylva::SignedRankResult::n)
+      .def_readonly("w_plus", &sylva::SignedRankResult::w_plus)
+      .def_readonly("p_value", &sylva::SignedRankResult::p_value)
+      .def_readonly("exact", &sylva::SignedRankResult::exact)
+      .def_readonly("positive", &sylva::SignedRankResult::positive)
+      .def_readonly("negative", &sylva::SignedRankResult::negative);
+  m.def("wilcoxon_signed_rank",
+        &sylva::wilcoxonSignedRank,
+        py::arg("differences"),
+        "Two-sided Wilcoxon signed-rank test of paired differences (zeros dropped).");
+  m.def("wilson_interval",
+        &sylva::wilsonInterval,
+        py::arg("successes"),
+        py::arg("trials"),
+        py::arg("confidence") = 0.95,
+        "Wilson score interval of a binomial proportion.");
 }
 
 }  // namespace sylva_py

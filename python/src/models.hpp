@@ -27,5 +27,7 @@ void bindOdometry(py::module_& m);
 void bindAckermann(py::module_& m);
 void bindSim(py::module_& m);
 void bindConsistency(py::module_& m);
+void bindDatasets(py::module_& m);
+void bindEval(py::module_& m);
 
 }  // namespace sylva_py

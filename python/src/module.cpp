@@ -11,4 +11,6 @@ PYBIND11_MODULE(_sylva, m) {
   sylva_py::bindAckermann(m);
   sylva_py::bindSim(m);
   sylva_py::bindConsistency(m);
+  sylva_py::bindDatasets(m);
+  sylva_py::bindEval(m);
 }
