@@ -6,7 +6,9 @@
 #                                              pictures README and the example pages quote
 #                                              (scripts/docs_figures.py, SOURCES); writes their
 #                                              figures files and pictures into docs/, rewrites every
-#                                              quoted figure, and checks the pages (a few minutes)
+#                                              quoted figure, and checks the pages (a few minutes);
+#                                              builds the Python package and measures its cost
+#                                              (scripts/python_report.sh, docs/python.md)
 #   bash scripts/regenerate_docs.sh --pages    also reruns the generators of the long pages first:
 #                                              the study (docs/results.md, about an hour on 2 cores),
 #                                              consistency, forest seeds, real data, benchmarks,
@@ -74,5 +76,6 @@ if ((pages)); then
   bash "$repo/scripts/clean_build_report.sh"
 fi
 "${figures[@]}" run --bin-dir "$bin_dir"
+bash "$repo/scripts/python_report.sh" --bin-dir "$bin_dir"  # docs/python.figures.json
 "${figures[@]}" update
 "${figures[@]}" check

@@ -72,10 +72,10 @@ packages=(build-essential cmake libeigen3-dev catch2 libcli11-dev nlohmann-json3
 # The sanitizer build uses clang (and its sanitizer runtimes): see the phase below.
 if ((run_sanitize)) && [[ -z "${SYLVA_SANITIZE_CXX:-}" ]]; then packages+=(clang libclang-rt-dev); fi
 if ((run_main)) && [[ "${SYLVA_CXX:-}" == clang++* ]]; then packages+=(clang); fi
-# The Python package: pybind11 and numpy from Debian, for Debian's interpreter.
-if ((run_python)); then
-  packages+=(python3-dev python3-venv python3-pybind11 pybind11-dev python3-numpy python3-pytest)
-fi
+# The Python package: pybind11, numpy and pytest from Debian, for Debian's interpreter.
+# shellcheck source=lib/python_package.sh
+source "$repo/scripts/lib/python_package.sh"
+if ((run_python)); then packages+=("${sylva_python_packages[@]}"); fi
 # shellcheck source=lib/install_packages.sh
 source "$repo/scripts/lib/install_packages.sh"
 sylva_install_packages "${packages[@]}"
@@ -176,21 +176,16 @@ consumer_phase() {
 }
 
 # ---- the Python package -------------------------------------------------------------------
-# The README's Python commands: a virtual environment of Debian's python3 that sees its
-# system packages (numpy, pybind11, pytest from apt; Debian 12 refuses pip installs into the
-# system itself), pip install of python/ without network or build isolation, then pytest.
-# SYLVA_PYTHON (default /usr/bin/python3, Debian's interpreter, for which apt installed the
-# packages) makes the environment. The extension is compiled by SYLVA_CXX's compiler when it
-# is clang++ (g++ otherwise), with $python_jobs jobs.
+# The README's Python commands (scripts/lib/python_package.sh): pip install of python/ into a
+# virtual environment of Debian's python3, then pytest. The extension is compiled by clang++
+# when SYLVA_CXX is clang++ (g++ otherwise), with $python_jobs jobs.
 python_jobs="$jobs"
 python_phase() {
   begin "Python package (pip install ./python, pytest python/tests)"
   local venv="$build_root/python-venv"
-  "${SYLVA_PYTHON:-/usr/bin/python3}" -m venv --system-site-packages "$venv"
-  local compilers=()
-  if [[ "${SYLVA_CXX:-}" == clang++* ]]; then compilers=(CC=clang CXX=clang++); fi
-  (cd "$repo" && env -u MAKEFLAGS "${compilers[@]}" SYLVA_JOBS="$python_jobs" \
-    "$venv/bin/pip" install --no-build-isolation --no-index --no-deps ./python)
+  local cxx=""
+  if [[ "${SYLVA_CXX:-}" == clang++* ]]; then cxx=clang++; fi
+  SYLVA_PYTHON_CXX="$cxx" SYLVA_JOBS="$python_jobs" sylva_python_package "$venv"
   # From the repository's root, as the README says: run from python/, `python -m pytest` would
   # import the package's sources (no compiled module) ahead of the installed package. With the
   # Release phase's examples at hand, the tests also compare the Python study's output with

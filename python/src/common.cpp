@@ -7,6 +7,7 @@
 #include <string>
 
 #include "sylva/core/error.hpp"
+#include "sylva/filter/linearization_point.hpp"
 #include "sylva/measurements/range_bearing.hpp"
 #include "sylva/slam/front_end.hpp"
 #include "sylva/slam/reach.hpp"
@@ -144,6 +145,15 @@ void bindCommon(py::module_& m) {
            py::arg("g"),
            py::arg("jacobians") = py::none())
       .def_property_readonly("dim", [](const InverseSpec& s) { return s.dim; });
+
+  py::enum_<sylva::LinearizationPoint>(
+      m, "Linearization", "Where a filter takes its Jacobians (docs/filter.md).")
+      .value("CURRENT_ESTIMATE", sylva::LinearizationPoint::kCurrentEstimate)
+      .value("FIRST_ESTIMATES", sylva::LinearizationPoint::kFirstEstimates)
+      .value("IDEAL", sylva::LinearizationPoint::kIdeal)
+      .value("ITERATED", sylva::LinearizationPoint::kIterated)
+      .value("INVARIANT", sylva::LinearizationPoint::kInvariant)
+      .value("OBSERVABILITY_CONSTRAINED", sylva::LinearizationPoint::kObservabilityConstrained);
 
   py::class_<InnovationResult>(m, "Innovation", "The innovation of an update, at the prior.")
       .def_readonly("nu", &InnovationResult::nu, "z - h(x) (angles wrapped)")

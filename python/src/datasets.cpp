@@ -12,6 +12,9 @@
 
 #include "sylva/datasets/utias_mrclam.hpp"
 #include "sylva/datasets/victoria_park.hpp"
+#include "sylva/datasets/victoria_park_gps.hpp"
+#include "sylva/eval/rigid_2d.hpp"
+#include "sylva/motion/ackermann_2d.hpp"
 
 #include "arrays.hpp"
 #include "models.hpp"
@@ -44,6 +47,26 @@ py::dict observations(const std::vector<ds::UtiasObservation>& obs) {
   d["barcode"] = column<int>(obs.size(), 0, [&](std::size_t i, int) { return obs[i].barcode; });
   d["z"] = column<double>(obs.size(), 2, [&](std::size_t i, int c) { return obs[i].z[c]; });
   return d;
+}
+
+/// A 1-D float64 array of the dict's entry `key`, with its length checked against n (< 0: any).
+py::array_t<double> entry(const py::dict& d, const char* key, const std::string& what) {
+  if (!d.contains(key))
+    sylva::fail(sylva::ErrorCode::kInvalidArgument, what + ": no entry '" + key + "'");
+  return asDoubleArray(d[key], what + "['" + key + "']");
+}
+
+/// The GPS fixes of a load_victoria_park() dict as the C++ loader's structs.
+std::vector<ds::VictoriaParkGps> gpsFixes(const py::dict& data) {
+  const py::dict gps = data["gps"];
+  const auto t = entry(gps, "t", "data['gps']");
+  const auto xy = entry(gps, "xy", "data['gps']");
+  if (t.ndim() != 1 || xy.ndim() != 2 || xy.shape(0) != t.shape(0) || xy.shape(1) != 2)
+    sylva::fail(sylva::ErrorCode::kInvalidArgument, "data['gps']: t (n,) and xy (n, 2) expected");
+  std::vector<ds::VictoriaParkGps> fixes(static_cast<std::size_t>(t.shape(0)));
+  for (py::ssize_t i = 0; i < t.shape(0); ++i)
+    fixes[static_cast<std::size_t>(i)] = {t.at(i), 0, xy.at(i, 0), xy.at(i, 1)};
+  return fixes;
 }
 
 }  // namespace
@@ -103,6 +126,95 @@ void bindDatasets(py::module_& m) {
       "start (m + 1,), range, bearing (laser convention: pi/2 ahead), diameter}, where scan k "
       "holds the detections "
       "start[k]:start[k + 1].");
+
+  m.def(
+      "victoria_park_valid_gps",
+      [](const py::dict& data, double wheelbase_m, double encoder_offset_m, double hold_s) {
+        const py::dict odo = data["odometry"];
+        const auto t = entry(odo, "t", "data['odometry']");
+        const auto speed = entry(odo, "speed", "data['odometry']");
+        const auto steering = entry(odo, "steering", "data['odometry']");
+        if (t.ndim() != 1 || speed.shape(0) != t.shape(0) || steering.shape(0) != t.shape(0))
+          sylva::fail(sylva::ErrorCode::kInvalidArgument,
+                      "data['odometry']: t, speed and steering of one length expected");
+        std::vector<ds::VictoriaParkOdometry> samples(static_cast<std::size_t>(t.shape(0)));
+        for (py::ssize_t i = 0; i < t.shape(0); ++i)
+          samples[static_cast<std::size_t>(i)] = {t.at(i), 0, speed.at(i), steering.at(i)};
+        const auto valid = ds::validVictoriaParkGpsFixes(
+            gpsFixes(data), samples, wheelbase_m, encoder_offset_m, hold_s);
+        py::array_t<bool> out(static_cast<py::ssize_t>(valid.size()));
+        for (std::size_t i = 0; i < valid.size(); ++i)
+          out.mutable_at(static_cast<py::ssize_t>(i)) = valid[i] != 0;
+        return out;
+      },
+      py::arg("data"),
+      py::arg("wheelbase_m") = 2.83,
+      py::arg("encoder_offset_m") = 0.76,
+      py::arg("hold_s") = ds::kVictoriaParkGpsHoldS,
+      "Which GPS fixes of a load_victoria_park() dict are trusted: a fix whose step disagrees with "
+      "the distance "
+      "driven, and those within hold_s after it, are not (sylva/datasets/victoria_park_gps.hpp).");
+  m.def(
+      "victoria_park_gps_error",
+      [](const py::handle& path_t,
+         const py::handle& path_xy,
+         const py::dict& data,
+         const py::handle& valid_obj) {
+        const auto t = asDoubleArray(path_t, "path_t");
+        const auto xy = toRows<2>(path_xy, "path_xy");
+        if (t.ndim() != 1 || static_cast<std::size_t>(t.shape(0)) != xy.size())
+          sylva::fail(sylva::ErrorCode::kInvalidArgument,
+                      "path_t: one time per row of path_xy expected");
+        std::vector<ds::TimedPosition> path(xy.size());
+        for (std::size_t i = 0; i < xy.size(); ++i)
+          path[i] = {t.at(static_cast<py::ssize_t>(i)), xy[i]};
+        const py::array_t<bool> valid_arr =
+            py::array_t<bool, py::array::forcecast>::ensure(valid_obj);
+        if (!valid_arr || valid_arr.ndim() != 1)
+          sylva::fail(sylva::ErrorCode::kInvalidArgument, "valid: a 1-D boolean array expected");
+        std::vector<char> valid(static_cast<std::size_t>(valid_arr.shape(0)));
+        for (py::ssize_t i = 0; i < valid_arr.shape(0); ++i)
+          valid[static_cast<std::size_t>(i)] = valid_arr.at(i) ? 1 : 0;
+        const ds::VictoriaParkGpsError e = ds::victoriaParkGpsError(path, gpsFixes(data), valid);
+        py::dict out;
+        out["rmse_valid_m"] = e.rmse_valid_m;
+        out["median_valid_m"] = e.median_valid_m;
+        out["rmse_all_m"] = e.rmse_all_m;
+        out["max_valid_m"] = e.max_valid_m;
+        out["valid"] = e.valid;
+        out["total"] = e.total;
+        out["transform"] = e.transform;
+        out["fix_t"] =
+            py::array_t<double>(static_cast<py::ssize_t>(e.fix_t_s.size()), e.fix_t_s.data());
+        out["fix_error_m"] = py::array_t<double>(static_cast<py::ssize_t>(e.fix_error_m.size()),
+                                                 e.fix_error_m.data());
+        return out;
+      },
+      py::arg("path_t"),
+      py::arg("path_xy"),
+      py::arg("data"),
+      py::arg("valid"),
+      "Aligns an estimated laser path (times (n,), positions (n, 2) in the map frame) to the valid "
+      "GPS fixes of a "
+      "load_victoria_park() dict and measures the error of each fix: a dict of rmse_valid_m, "
+      "median_valid_m, "
+      "rmse_all_m, max_valid_m, valid, total, transform (Rigid2, map to GPS frame), fix_t and "
+      "fix_error_m.");
+  m.def(
+      "ackermann_axle_motion",
+      [](double speed_mps, double steering_rad, double wheelbase_m, double encoder_offset_m) {
+        double v_c = 0.0, omega = 0.0;
+        sylva::Ackermann2D(wheelbase_m, encoder_offset_m)
+            .axleMotion(speed_mps, steering_rad, v_c, omega);
+        return py::make_tuple(v_c, omega);
+      },
+      py::arg("speed_mps"),
+      py::arg("steering_rad"),
+      py::arg("wheelbase_m"),
+      py::arg("encoder_offset_m") = 0.0,
+      "The speed of the rear axle's centre and the turn rate (v_c, omega) for an encoder speed and "
+      "a steering angle "
+      "(sylva::Ackermann2D).");
 
   m.def(
       "load_utias_mrclam",

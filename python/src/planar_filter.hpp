@@ -286,6 +286,17 @@ void bindPlanarFilter(py::module_& m,
       py::arg("fusion") = "batched",
       "Fuses the measurements Z (n, m) of landmarks ids in one batched update (or one at a time).");
 
+  cls.def_property(
+      "linearization",
+      &Filter::linearizationPoint,
+      [](Filter& f, sylva::LinearizationPoint point) {
+        if (point == sylva::LinearizationPoint::kIdeal)
+          sylva::fail(sylva::ErrorCode::kInvalidArgument,
+                      "the ideal linearization is not available from Python");
+        f.setLinearizationPoint(point);
+      },
+      "Where the Jacobians are taken (sylva.Linearization; docs/filter.md). Set it before the "
+      "first landmark.");
   cls.def("remove", &Filter::remove, py::arg("id"), "Removes landmark id from the state.");
   cls.def(
       "copy", [](const Filter& f) { return Filter(f); }, "An independent copy of the filter.");

@@ -82,6 +82,18 @@ class PythonInverseModel:
 MeasurementModel = Union[RangeBearing, PythonModel]
 InverseModel = Union[InverseRangeBearing, PythonInverseModel]
 
+class Linearization:
+    CURRENT_ESTIMATE: ClassVar[Linearization]
+    FIRST_ESTIMATES: ClassVar[Linearization]
+    IDEAL: ClassVar[Linearization]
+    ITERATED: ClassVar[Linearization]
+    INVARIANT: ClassVar[Linearization]
+    OBSERVABILITY_CONSTRAINED: ClassVar[Linearization]
+    @property
+    def name(self) -> str: ...
+    @property
+    def value(self) -> int: ...
+
 class Innovation:
     """The innovation of an update, at the prior."""
 
@@ -211,6 +223,7 @@ class _PlanarEkf:
         self, model: MeasurementModel, ids: Sequence[int], Z: ArrayLike, noise: ArrayLike, fusion: str = "batched"
     ) -> None: ...
     def remove(self, id: int) -> None: ...
+    linearization: Linearization
     def __len__(self) -> int: ...
     def __contains__(self, id: int) -> bool: ...
     @property
@@ -467,6 +480,16 @@ def negative_saturated_average(errors: Sequence[float], limit: float) -> float: 
 # ---------------------------------------------------------------- data sets
 
 def load_victoria_park(folder: str, max_span_gap_s: float = 30.0) -> dict[str, dict[str, Array]]: ...
+def victoria_park_valid_gps(
+    data: dict, wheelbase_m: float = 2.83, encoder_offset_m: float = 0.76, hold_s: float = 2.0
+) -> npt.NDArray[np.bool_]: ...
+def victoria_park_gps_error(path_t: ArrayLike, path_xy: ArrayLike, data: dict, valid: ArrayLike) -> dict: ...
+def ackermann_axle_motion(
+    speed_mps: float, steering_rad: float, wheelbase_m: float, encoder_offset_m: float = 0.0
+) -> Tuple[float, float]: ...
 def load_utias_mrclam(
     folder: str, robots: Sequence[int] = ..., time_reference_s: float = ..., max_span_gap_s: float = 30.0
 ) -> dict: ...
+
+build_info: dict[str, object]
+"""How the module was compiled: compiler, optimized, simd (Eigen's instruction sets)."""
