@@ -21,7 +21,10 @@ if not (include / "sylva" / "sylva.hpp").is_file():
 
 ParallelCompile("SYLVA_JOBS", default=os.cpu_count() or 1).install()
 
-sources = sorted(str(p.relative_to(here)) for p in (here / "src").glob("*.cpp"))
+# The longest units first, so that the parallel compile does not end on one of them alone.
+LONGEST = ["monocular_pipeline.cpp", "planar_odometry.cpp", "planar_ackermann.cpp", "planar_unicycle.cpp"]
+sources = sorted((str(p.relative_to(here)) for p in (here / "src").glob("*.cpp")),
+                 key=lambda s: (LONGEST.index(Path(s).name) if Path(s).name in LONGEST else len(LONGEST), s))
 # Every header the units may include: setuptools rebuilds the extension when one is newer.
 depends = sorted(str(p) for p in [*include.rglob("*.hpp"), *(here / "src").glob("*.hpp")])
 extension = Pybind11Extension(

@@ -178,14 +178,18 @@ consumer_phase() {
 # ---- the Python package -------------------------------------------------------------------
 # The README's Python commands (scripts/lib/python_package.sh): pip install of python/ into a
 # virtual environment of Debian's python3, then pytest. The extension is compiled by clang++
-# when SYLVA_CXX is clang++ (g++ otherwise), with $python_jobs jobs.
+# when SYLVA_CXX is clang++ (g++ otherwise), with all the jobs: with --overlap it comes last in
+# its chain, when the other chain is running its tests, and a single compiler would leave a
+# core idle once they end. At -O1, as the Release phase builds the examples that the tests
+# compare the Python examples with (python/setup.py builds users' at -O2): a third less
+# compile time, and at -O0 the tests ran 30 times longer.
 python_jobs="$jobs"
 python_phase() {
   begin "Python package (pip install ./python, pytest python/tests)"
   local venv="$build_root/python-venv"
   local cxx=""
   if [[ "${SYLVA_CXX:-}" == clang++* ]]; then cxx=clang++; fi
-  SYLVA_PYTHON_CXX="$cxx" SYLVA_JOBS="$python_jobs" sylva_python_package "$venv"
+  SYLVA_PYTHON_CXX="$cxx" SYLVA_JOBS="$python_jobs" SYLVA_PY_OPT="${SYLVA_PY_OPT:--O1}" sylva_python_package "$venv"
   # From the repository's root, as the README says: run from python/, `python -m pytest` would
   # import the package's sources (no compiled module) ahead of the installed package. With the
   # Release phase's examples at hand, the tests also compare the Python study's output with
@@ -232,7 +236,7 @@ if ((overlap && run_main && (run_sanitize || run_consumer))); then
   ( trap hand_over_job EXIT
     main_phase 2>&1 | label release
     if ((run_consumer)); then consumer_phase 2>&1 | label consumer; fi
-    if ((run_python)); then python_jobs=1; python_phase 2>&1 | label python; fi ) &
+    if ((run_python)); then python_phase 2>&1 | label python; fi ) &
   main_pid=$!
   ( trap hand_over_job EXIT
     if ((run_sanitize)); then sanitize_phase; fi ) 2>&1 | label sanitize &

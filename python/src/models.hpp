@@ -29,5 +29,6 @@ void bindSim(py::module_& m);
 void bindConsistency(py::module_& m);
 void bindDatasets(py::module_& m);
 void bindEval(py::module_& m);
+void bindMonocular(py::module_& m);
 
 }  // namespace sylva_py

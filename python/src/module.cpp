@@ -32,4 +32,5 @@ PYBIND11_MODULE(_sylva, m) {
   sylva_py::bindConsistency(m);
   sylva_py::bindDatasets(m);
   sylva_py::bindEval(m);
+  sylva_py::bindMonocular(m);
 }

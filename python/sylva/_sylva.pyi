@@ -493,3 +493,168 @@ def load_utias_mrclam(
 
 build_info: dict[str, object]
 """How the module was compiled: compiler, optimized, simd (Eigen's instruction sets)."""
+
+# ---------------------------------------------------------------- the monocular tree pipeline
+
+class PinholeCamera:
+    """Intrinsics fx, fy, cx, cy (pixels) and the image size."""
+
+    def __init__(
+        self, fx: float = 500.0, fy: float = 500.0, cx: float = 320.0, cy: float = 240.0, width: int = 640,
+        height: int = 480
+    ) -> None: ...
+    @property
+    def fx(self) -> float: ...
+    @property
+    def fy(self) -> float: ...
+    @property
+    def cx(self) -> float: ...
+    @property
+    def cy(self) -> float: ...
+    @property
+    def width(self) -> int: ...
+    @property
+    def height(self) -> int: ...
+
+class WidthPipeline:
+    NONE: ClassVar[WidthPipeline]
+    AFTER_XYZ: ClassVar[WidthPipeline]
+    FROM_FIRST_SIGHT: ClassVar[WidthPipeline]
+    @property
+    def name(self) -> str: ...
+    @property
+    def value(self) -> int: ...
+
+class TrunkAssociation:
+    KNOWN_IDS: ClassVar[TrunkAssociation]
+    NEAREST_NEIGHBOR: ClassVar[TrunkAssociation]
+    @property
+    def name(self) -> str: ...
+    @property
+    def value(self) -> int: ...
+
+class VelocityFrame:
+    WORLD: ClassVar[VelocityFrame]
+    CAMERA: ClassVar[VelocityFrame]
+    @property
+    def name(self) -> str: ...
+    @property
+    def value(self) -> int: ...
+
+class TreeSlamOptions:
+    camera: PinholeCamera
+    pipeline: WidthPipeline
+    pixel_sigma_px: float
+    width_sigma_px: float
+    linear_accel_sigma: float
+    angular_accel_sigma: float
+    velocity_frame: VelocityFrame
+    initial_inverse_depth: float
+    inverse_depth_sigma: float
+    linearity_threshold: float
+    tree_position_sigma_m: float
+    gate_probability: float
+    conversion_given_camera: bool
+    linearization: Linearization
+    association: TrunkAssociation
+    association_gate_probability: float
+    new_tree_probability: float
+    width_appearance: bool
+    width_appearance_tolerance: float
+    fusion: Fusion
+    def __init__(self) -> None: ...
+
+class FrameReport:
+    @property
+    def fused(self) -> int: ...
+    @property
+    def fused_rows(self) -> int: ...
+    @property
+    def added(self) -> int: ...
+    @property
+    def to_xyz(self) -> int: ...
+    @property
+    def to_tree(self) -> int: ...
+    @property
+    def rejected(self) -> int: ...
+    @property
+    def hypotheses(self) -> int: ...
+    @property
+    def ambiguous(self) -> int: ...
+    @property
+    def landmark_of(self) -> list[int]: ...
+
+def initial_camera_covariance() -> Array: ...
+
+class MonocularTreeSlam:
+    """Monocular EKF-SLAM with trees as landmarks (tree-width thesis)."""
+
+    def __init__(self, options: TreeSlamOptions, x0: ArrayLike, P0: Optional[ArrayLike] = None) -> None: ...
+    def process_frame(self, dt: float, ids: Sequence[int], Z: ArrayLike) -> FrameReport: ...
+    def count_by_type(self) -> Tuple[int, int, int, int]: ...
+    @property
+    def options(self) -> TreeSlamOptions: ...
+    @property
+    def camera_mean(self) -> Array: ...
+    @property
+    def camera_covariance(self) -> Array: ...
+    @property
+    def dim(self) -> int: ...
+    def euclidean_landmarks(self) -> Tuple[npt.NDArray[np.int64], Array, Array]: ...
+    def camera_pose_error(self, truth: ArrayLike) -> Tuple[Array, Array]: ...
+
+class ForestOptions:
+    x_min_m: float
+    x_max_m: float
+    y_min_m: float
+    y_max_m: float
+    grid_spacing_m: float
+    presence_probability: float
+    jitter_sigma_m: float
+    radius_mean_m: float
+    radius_sigma_m: float
+    radius_min_m: float
+    radius_max_m: float
+    elevation_amplitude_m: float
+    elevation_wavelength_m: float
+    clearance_m: float
+    def __init__(self) -> None: ...
+
+class ForestTrajectoryOptions:
+    speed_mps: float
+    dt_s: float
+    laps: int
+    camera_height_m: float
+    pitch_rad: float
+    def __init__(self) -> None: ...
+
+class TreeObserverOptions:
+    sigma_px: float
+    sigma_width_px: float
+    occlusion: bool
+    max_range_m: float
+    def __init__(self) -> None: ...
+
+class ForestScenarioOptions:
+    camera: PinholeCamera
+    forest: ForestOptions
+    trajectory: ForestTrajectoryOptions
+    observer: TreeObserverOptions
+    def __init__(self) -> None: ...
+
+class ForestScenario:
+    """A simulated forest run: trees, camera frames and the noisy [u, v, w] seen in each."""
+
+    def __init__(self, options: ForestScenarioOptions, seed: int) -> None: ...
+    @property
+    def tree_bases(self) -> Array: ...
+    @property
+    def tree_radii(self) -> Array: ...
+    @property
+    def frame_times(self) -> Array: ...
+    @property
+    def frame_laps(self) -> npt.NDArray[np.int32]: ...
+    @property
+    def camera_states(self) -> Array: ...
+    def __len__(self) -> int: ...
+    def observations(self, frame: int) -> Tuple[npt.NDArray[np.int64], Array, Array, Array]: ...

@@ -6,7 +6,10 @@
 # isolation. SYLVA_PYTHON (default /usr/bin/python3, the interpreter apt installs for) makes
 # the venv; SYLVA_PYTHON_CXX=clang++ compiles the extension with clang (default: g++, as pip
 # does); SYLVA_JOBS compiles its units in parallel. Needs $repo (the repository's root).
-sylva_python_packages=(python3-dev python3-venv python3-pybind11 pybind11-dev python3-numpy python3-pytest)
+# python3-wheel: setuptools 66 builds a wheel through it, and pip without build isolation
+# does not fetch it.
+sylva_python_packages=(python3-dev python3-venv python3-setuptools python3-wheel python3-pybind11 pybind11-dev
+                       python3-numpy python3-pytest python3-matplotlib)
 
 sylva_python_package() {
   local venv="$1"
