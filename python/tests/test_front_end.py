@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 import sylva
-from conftest import range_bearing
+from conftest import assert_unchanged, range_bearing, snapshot
 
 SIGMA = np.array([0.05, np.radians(1.0)])  # range m, bearing rad
 SIGMA_U = np.array([0.05, np.radians(1.0)])  # v m/s, omega rad/s
@@ -78,7 +78,15 @@ def test_refused_readings_are_values_not_exceptions():
     assert report.readings[2].error == sylva.ErrorCode.DEGENERATE_GEOMETRY
     assert ekf.ids == [1]
     assert front.sightings(1) == 1
+    before = snapshot(ekf)
     with pytest.raises(sylva.Error, match="earlier than the last step"):
         front.update([[3.0, 0.1]], np.diag(SIGMA**2), -1.0, ids=[1])
     with pytest.raises(sylva.Error, match=r"noise: expected shape \(2, 2\) or \(1, 2, 2\)"):
         front.update([[3.0, 0.1]], np.zeros((2, 2, 2)), 1.0, ids=[1])
+    with pytest.raises(sylva.Error, match="ids: 2 ids for 1 readings"):
+        front.update([[3.0, 0.1]], np.diag(SIGMA**2), 1.0, ids=[1, 2])
+    with pytest.raises(sylva.Error) as info:
+        front.step([1.0, 0.0], -0.5, np.diag(SIGMA_U**2), [[3.0, 0.1]], np.diag(SIGMA**2), 1.0, ids=[1])
+    assert info.value.code == sylva.ErrorCode.NEGATIVE_TIME_STEP
+    assert_unchanged(ekf, before)
+    assert front.sightings(1) == 1
