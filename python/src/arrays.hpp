@@ -112,6 +112,28 @@ inline std::vector<sylva::Id> toIds(const py::handle& obj, const std::string& wh
   return std::vector<sylva::Id>(ids.data(), ids.data() + ids.shape(0));
 }
 
+/// A numpy array of n values (cols == 0) or of n rows of `cols` values, entry (i, c) being
+/// get(i, c): how the bindings turn a list of C++ records into one array per field.
+template <typename T, typename Get>
+py::array_t<T> arrayOf(std::size_t n, int cols, Get&& get) {
+  const auto rows = static_cast<py::ssize_t>(n);
+  if (cols == 0) {
+    py::array_t<T> out(rows);
+    for (py::ssize_t i = 0; i < rows; ++i) out.mutable_at(i) = get(static_cast<std::size_t>(i), 0);
+    return out;
+  }
+  py::array_t<T> out({rows, static_cast<py::ssize_t>(cols)});
+  for (py::ssize_t i = 0; i < rows; ++i)
+    for (int c = 0; c < cols; ++c) out.mutable_at(i, c) = get(static_cast<std::size_t>(i), c);
+  return out;
+}
+
+/// A numpy copy of a std::vector of numbers.
+template <typename T>
+py::array_t<T> toArray(const std::vector<T>& v) {
+  return py::array_t<T>(static_cast<py::ssize_t>(v.size()), v.data());
+}
+
 /// A numpy copy of any Eigen vector or matrix (a vector comes out 1-D).
 template <typename Derived>
 py::array_t<double> toArray(const Eigen::MatrixBase<Derived>& m) {

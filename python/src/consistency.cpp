@@ -72,10 +72,7 @@ void bindConsistency(py::module_& m) {
       .def_property_readonly("runs", &sylva::NeesSeries::runs)
       .def(
           "averages",
-          [](const sylva::NeesSeries& s) {
-            const auto a = s.averages();
-            return py::array_t<double>(static_cast<py::ssize_t>(a.size()), a.data());
-          },
+          [](const sylva::NeesSeries& s) { return toArray(s.averages()); },
           "The run-averaged value at each step (NaN where nothing was recorded).")
       .def("mean", &sylva::NeesSeries::mean, "The mean over steps of the run-averaged value.")
       .def("bounds",
@@ -106,16 +103,8 @@ void bindConsistency(py::module_& m) {
       .def(py::init<int>(), py::arg("dof"))
       .def("add", &Ensemble::add, py::arg("run"), py::arg("step"), py::arg("value"))
       .def_property_readonly("dof", &Ensemble::dof)
-      .def("step_averages",
-           [](const Ensemble& e) {
-             const auto a = e.stepAverages();
-             return py::array_t<double>(static_cast<py::ssize_t>(a.size()), a.data());
-           })
-      .def("run_averages",
-           [](const Ensemble& e) {
-             const auto a = e.runAverages();
-             return py::array_t<double>(static_cast<py::ssize_t>(a.size()), a.data());
-           })
+      .def("step_averages", [](const Ensemble& e) { return toArray(e.stepAverages()); })
+      .def("run_averages", [](const Ensemble& e) { return toArray(e.runAverages()); })
       .def("summary", &Ensemble::summary, py::arg("confidence") = 0.95);
 
   m.def("mcnemar_exact",

@@ -25,27 +25,12 @@ namespace {
 
 namespace ds = sylva::datasets;
 
-/// A numpy array of n values (or n x cols), filled by get(i, column).
-template <typename T, typename Get>
-py::array_t<T> column(std::size_t n, int cols, Get&& get) {
-  const auto rows = static_cast<py::ssize_t>(n);
-  py::array_t<T> out =
-      cols == 0 ? py::array_t<T>(rows) : py::array_t<T>({rows, static_cast<py::ssize_t>(cols)});
-  if (cols == 0) {
-    for (py::ssize_t i = 0; i < rows; ++i) out.mutable_at(i) = get(static_cast<std::size_t>(i), 0);
-  } else {
-    for (py::ssize_t i = 0; i < rows; ++i)
-      for (int c = 0; c < cols; ++c) out.mutable_at(i, c) = get(static_cast<std::size_t>(i), c);
-  }
-  return out;
-}
-
 py::dict observations(const std::vector<ds::UtiasObservation>& obs) {
   py::dict d;
-  d["t"] = column<double>(obs.size(), 0, [&](std::size_t i, int) { return obs[i].time_s; });
-  d["subject"] = column<int>(obs.size(), 0, [&](std::size_t i, int) { return obs[i].subject; });
-  d["barcode"] = column<int>(obs.size(), 0, [&](std::size_t i, int) { return obs[i].barcode; });
-  d["z"] = column<double>(obs.size(), 2, [&](std::size_t i, int c) { return obs[i].z[c]; });
+  d["t"] = arrayOf<double>(obs.size(), 0, [&](std::size_t i, int) { return obs[i].time_s; });
+  d["subject"] = arrayOf<int>(obs.size(), 0, [&](std::size_t i, int) { return obs[i].subject; });
+  d["barcode"] = arrayOf<int>(obs.size(), 0, [&](std::size_t i, int) { return obs[i].barcode; });
+  d["z"] = arrayOf<double>(obs.size(), 2, [&](std::size_t i, int c) { return obs[i].z[c]; });
   return d;
 }
 
@@ -80,20 +65,20 @@ void bindDatasets(py::module_& m) {
         const auto& odo = data.odometry;
         py::dict odometry;
         odometry["t"] =
-            column<double>(odo.size(), 0, [&](std::size_t i, int) { return odo[i].t_s; });
-        odometry["t_raw_ms"] = column<std::int64_t>(
+            arrayOf<double>(odo.size(), 0, [&](std::size_t i, int) { return odo[i].t_s; });
+        odometry["t_raw_ms"] = arrayOf<std::int64_t>(
             odo.size(), 0, [&](std::size_t i, int) { return odo[i].t_raw_ms; });
         odometry["speed"] =
-            column<double>(odo.size(), 0, [&](std::size_t i, int) { return odo[i].speed_mps; });
+            arrayOf<double>(odo.size(), 0, [&](std::size_t i, int) { return odo[i].speed_mps; });
         odometry["steering"] =
-            column<double>(odo.size(), 0, [&](std::size_t i, int) { return odo[i].steering_rad; });
+            arrayOf<double>(odo.size(), 0, [&](std::size_t i, int) { return odo[i].steering_rad; });
         out["odometry"] = odometry;
         const auto& gps = data.gps;
         py::dict fixes;
-        fixes["t"] = column<double>(gps.size(), 0, [&](std::size_t i, int) { return gps[i].t_s; });
-        fixes["t_raw_ms"] = column<std::int64_t>(
+        fixes["t"] = arrayOf<double>(gps.size(), 0, [&](std::size_t i, int) { return gps[i].t_s; });
+        fixes["t_raw_ms"] = arrayOf<std::int64_t>(
             gps.size(), 0, [&](std::size_t i, int) { return gps[i].t_raw_ms; });
-        fixes["xy"] = column<double>(
+        fixes["xy"] = arrayOf<double>(
             gps.size(), 2, [&](std::size_t i, int c) { return c == 0 ? gps[i].x_m : gps[i].y_m; });
         out["gps"] = fixes;
         // Scans as one flat list of detections: scan k holds detections start[k] .. start[k + 1].
@@ -104,16 +89,15 @@ void bindDatasets(py::module_& m) {
           start.push_back(static_cast<std::int64_t>(flat.size()));
         }
         py::dict scans;
-        scans["t"] = column<double>(
+        scans["t"] = arrayOf<double>(
             data.scans.size(), 0, [&](std::size_t i, int) { return data.scans[i].t_s; });
-        scans["start"] =
-            py::array_t<std::int64_t>(static_cast<py::ssize_t>(start.size()), start.data());
+        scans["start"] = toArray(start);
         scans["range"] =
-            column<double>(flat.size(), 0, [&](std::size_t i, int) { return flat[i]->range_m; });
-        scans["bearing"] = column<double>(
+            arrayOf<double>(flat.size(), 0, [&](std::size_t i, int) { return flat[i]->range_m; });
+        scans["bearing"] = arrayOf<double>(
             flat.size(), 0, [&](std::size_t i, int) { return flat[i]->bearing_rad; });
-        scans["diameter"] =
-            column<double>(flat.size(), 0, [&](std::size_t i, int) { return flat[i]->diameter_m; });
+        scans["diameter"] = arrayOf<double>(
+            flat.size(), 0, [&](std::size_t i, int) { return flat[i]->diameter_m; });
         out["scans"] = scans;
         return out;
       },
@@ -142,10 +126,7 @@ void bindDatasets(py::module_& m) {
           samples[static_cast<std::size_t>(i)] = {t.at(i), 0, speed.at(i), steering.at(i)};
         const auto valid = ds::validVictoriaParkGpsFixes(
             gpsFixes(data), samples, wheelbase_m, encoder_offset_m, hold_s);
-        py::array_t<bool> out(static_cast<py::ssize_t>(valid.size()));
-        for (std::size_t i = 0; i < valid.size(); ++i)
-          out.mutable_at(static_cast<py::ssize_t>(i)) = valid[i] != 0;
-        return out;
+        return arrayOf<bool>(valid.size(), 0, [&](std::size_t i, int) { return valid[i] != 0; });
       },
       py::arg("data"),
       py::arg("wheelbase_m") = 2.83,
@@ -184,10 +165,8 @@ void bindDatasets(py::module_& m) {
         out["valid"] = e.valid;
         out["total"] = e.total;
         out["transform"] = e.transform;
-        out["fix_t"] =
-            py::array_t<double>(static_cast<py::ssize_t>(e.fix_t_s.size()), e.fix_t_s.data());
-        out["fix_error_m"] = py::array_t<double>(static_cast<py::ssize_t>(e.fix_error_m.size()),
-                                                 e.fix_error_m.data());
+        out["fix_t"] = toArray(e.fix_t_s);
+        out["fix_error_m"] = toArray(e.fix_error_m);
         return out;
       },
       py::arg("path_t"),
@@ -232,39 +211,39 @@ void bindDatasets(py::module_& m) {
         const auto& lm = data.landmarks;
         py::dict landmarks;
         landmarks["subject"] =
-            column<int>(lm.size(), 0, [&](std::size_t i, int) { return lm[i].subject; });
+            arrayOf<int>(lm.size(), 0, [&](std::size_t i, int) { return lm[i].subject; });
         landmarks["barcode"] =
-            column<int>(lm.size(), 0, [&](std::size_t i, int) { return lm[i].barcode; });
-        landmarks["position"] =
-            column<double>(lm.size(), 2, [&](std::size_t i, int c) { return lm[i].position_m[c]; });
+            arrayOf<int>(lm.size(), 0, [&](std::size_t i, int) { return lm[i].barcode; });
+        landmarks["position"] = arrayOf<double>(
+            lm.size(), 2, [&](std::size_t i, int c) { return lm[i].position_m[c]; });
         landmarks["sigma"] =
-            column<double>(lm.size(), 2, [&](std::size_t i, int c) { return lm[i].sigma_m[c]; });
+            arrayOf<double>(lm.size(), 2, [&](std::size_t i, int c) { return lm[i].sigma_m[c]; });
         out["landmarks"] = landmarks;
         py::dict robot_dict;
         for (const auto& r : data.robots) {
           py::dict d;
           d["odometry"] = py::dict(
-              py::arg("t") = column<double>(
+              py::arg("t") = arrayOf<double>(
                   r.odometry.size(), 0, [&](std::size_t i, int) { return r.odometry[i].time_s; }),
-              py::arg("u") = column<double>(
+              py::arg("u") = arrayOf<double>(
                   r.odometry.size(), 2, [&](std::size_t i, int c) { return r.odometry[i].u[c]; }));
           d["landmark_observations"] = observations(r.landmark_observations);
           d["robot_observations"] = observations(r.robot_observations);
           d["groundtruth"] = py::dict(
               py::arg("t") =
-                  column<double>(r.groundtruth.size(),
-                                 0,
-                                 [&](std::size_t i, int) { return r.groundtruth[i].time_s; }),
-              py::arg("pose") = column<double>(r.groundtruth.size(), 3, [&](std::size_t i, int c) {
+                  arrayOf<double>(r.groundtruth.size(),
+                                  0,
+                                  [&](std::size_t i, int) { return r.groundtruth[i].time_s; }),
+              py::arg("pose") = arrayOf<double>(r.groundtruth.size(), 3, [&](std::size_t i, int c) {
                 return r.groundtruth[i].pose[c];
               }));
           d["unknown_barcode_rows"] =
-              py::dict(py::arg("line") = column<std::int64_t>(
+              py::dict(py::arg("line") = arrayOf<std::int64_t>(
                            r.unknown_barcode_rows.size(),
                            0,
                            [&](std::size_t i, int) { return r.unknown_barcode_rows[i].line; }),
                        py::arg("barcode") =
-                           column<int>(r.unknown_barcode_rows.size(), 0, [&](std::size_t i, int) {
+                           arrayOf<int>(r.unknown_barcode_rows.size(), 0, [&](std::size_t i, int) {
                              return r.unknown_barcode_rows[i].barcode;
                            }));
           d["measurement_rows"] = r.measurement_rows;

@@ -24,13 +24,9 @@ template <int N, typename F>
 py::array_t<double> applyToPoints(const py::handle& points, F&& f) {
   const auto a = asDoubleArray(points, "points");
   if (a.ndim() == 1) return toArray(f(toVec<N>(a, "points")));
-  const auto rows = toRows<N>(a, "points");
-  py::array_t<double> out({static_cast<py::ssize_t>(rows.size()), py::ssize_t{N}});
-  for (std::size_t i = 0; i < rows.size(); ++i) {
-    const sylva::Vec<N> p = f(rows[i]);
-    for (int c = 0; c < N; ++c) out.mutable_at(static_cast<py::ssize_t>(i), c) = p[c];
-  }
-  return out;
+  std::vector<sylva::Vec<N>> rows = toRows<N>(a, "points");
+  for (auto& p : rows) p = f(p);
+  return arrayOf<double>(rows.size(), N, [&](std::size_t i, int c) { return rows[i][c]; });
 }
 
 }  // namespace

@@ -60,12 +60,10 @@ py::tuple euclidean(const Filter& ekf) {
       radii.push_back(l[3]);
     }
   }
-  py::array_t<double> p({static_cast<py::ssize_t>(positions.size()), py::ssize_t{3}});
-  for (std::size_t i = 0; i < positions.size(); ++i)
-    for (int c = 0; c < 3; ++c) p.mutable_at(static_cast<py::ssize_t>(i), c) = positions[i][c];
-  return py::make_tuple(py::array_t<sylva::Id>(static_cast<py::ssize_t>(ids.size()), ids.data()),
-                        p,
-                        py::array_t<double>(static_cast<py::ssize_t>(radii.size()), radii.data()));
+  return py::make_tuple(
+      toArray(ids),
+      arrayOf<double>(positions.size(), 3, [&](std::size_t i, int c) { return positions[i][c]; }),
+      toArray(radii));
 }
 
 }  // namespace
@@ -266,42 +264,33 @@ void bindMonocular(py::module_& m) {
       .def_property_readonly(
           "tree_bases",
           [](const sim::ForestScenario& s) {
-            py::array_t<double> out({static_cast<py::ssize_t>(s.trees.size()), py::ssize_t{3}});
-            for (std::size_t i = 0; i < s.trees.size(); ++i)
-              for (int c = 0; c < 3; ++c)
-                out.mutable_at(static_cast<py::ssize_t>(i), c) = s.trees[i].base[c];
-            return out;
+            return arrayOf<double>(
+                s.trees.size(), 3, [&](std::size_t i, int c) { return s.trees[i].base[c]; });
           },
           "Base centres of the trees (n, 3); tree i has id i.")
       .def_property_readonly("tree_radii",
                              [](const sim::ForestScenario& s) {
-                               std::vector<double> r;
-                               for (const auto& t : s.trees) r.push_back(t.radius_m);
-                               return py::array_t<double>(static_cast<py::ssize_t>(r.size()),
-                                                          r.data());
+                               return arrayOf<double>(s.trees.size(), 0, [&](std::size_t i, int) {
+                                 return s.trees[i].radius_m;
+                               });
                              })
       .def_property_readonly("frame_times",
                              [](const sim::ForestScenario& s) {
-                               std::vector<double> t;
-                               for (const auto& f : s.frames) t.push_back(f.t_s);
-                               return py::array_t<double>(static_cast<py::ssize_t>(t.size()),
-                                                          t.data());
+                               return arrayOf<double>(s.frames.size(), 0, [&](std::size_t k, int) {
+                                 return s.frames[k].t_s;
+                               });
                              })
       .def_property_readonly("frame_laps",
                              [](const sim::ForestScenario& s) {
-                               std::vector<int> l;
-                               for (const auto& f : s.frames) l.push_back(f.lap);
-                               return py::array_t<int>(static_cast<py::ssize_t>(l.size()),
-                                                       l.data());
+                               return arrayOf<int>(s.frames.size(), 0, [&](std::size_t k, int) {
+                                 return s.frames[k].lap;
+                               });
                              })
       .def_property_readonly(
           "camera_states",
           [](const sim::ForestScenario& s) {
-            py::array_t<double> out({static_cast<py::ssize_t>(s.frames.size()), py::ssize_t{13}});
-            for (std::size_t k = 0; k < s.frames.size(); ++k)
-              for (int c = 0; c < 13; ++c)
-                out.mutable_at(static_cast<py::ssize_t>(k), c) = s.frames[k].state[c];
-            return out;
+            return arrayOf<double>(
+                s.frames.size(), 13, [&](std::size_t k, int c) { return s.frames[k].state[c]; });
           },
           "True camera states (frames, 13).")
       .def("__len__", [](const sim::ForestScenario& s) { return s.frames.size(); })
@@ -313,19 +302,12 @@ void bindMonocular(py::module_& m) {
                           "ForestScenario.observations: frame " + std::to_string(k) +
                               " is outside [0, " + std::to_string(s.observations.size()) + ")");
             const auto& obs = s.observations[static_cast<std::size_t>(k)];
-            const auto n = static_cast<py::ssize_t>(obs.size());
-            py::array_t<sylva::Id> ids(n);
-            py::array_t<double> z({n, py::ssize_t{3}}), z_true({n, py::ssize_t{3}}), depth(n);
-            for (py::ssize_t i = 0; i < n; ++i) {
-              const auto& o = obs[static_cast<std::size_t>(i)];
-              ids.mutable_at(i) = o.id;
-              depth.mutable_at(i) = o.depth_m;
-              for (int c = 0; c < 3; ++c) {
-                z.mutable_at(i, c) = o.z[c];
-                z_true.mutable_at(i, c) = o.z_true[c];
-              }
-            }
-            return py::make_tuple(ids, z, z_true, depth);
+            return py::make_tuple(
+                arrayOf<sylva::Id>(obs.size(), 0, [&](std::size_t i, int) { return obs[i].id; }),
+                arrayOf<double>(obs.size(), 3, [&](std::size_t i, int c) { return obs[i].z[c]; }),
+                arrayOf<double>(
+                    obs.size(), 3, [&](std::size_t i, int c) { return obs[i].z_true[c]; }),
+                arrayOf<double>(obs.size(), 0, [&](std::size_t i, int) { return obs[i].depth_m; }));
           },
           py::arg("frame"),
           "The trees seen in frame k: (ids (n,), Z (n, 3) noisy [u, v, w], noise-free Z, depths).");

@@ -18,23 +18,6 @@ namespace {
 
 namespace sim = sylva::sim;
 
-/// (n, 2) positions of true landmarks.
-py::array_t<double> landmarkPositions(const std::vector<sim::TrueLandmark2D>& landmarks) {
-  py::array_t<double> positions({static_cast<py::ssize_t>(landmarks.size()), py::ssize_t{2}});
-  for (std::size_t i = 0; i < landmarks.size(); ++i) {
-    positions.mutable_at(i, 0) = landmarks[i].position[0];
-    positions.mutable_at(i, 1) = landmarks[i].position[1];
-  }
-  return positions;
-}
-
-/// (n,) ids of true landmarks.
-py::array_t<sylva::Id> landmarkIds(const std::vector<sim::TrueLandmark2D>& landmarks) {
-  py::array_t<sylva::Id> ids(static_cast<py::ssize_t>(landmarks.size()));
-  for (std::size_t i = 0; i < landmarks.size(); ++i) ids.mutable_at(i) = landmarks[i].id;
-  return ids;
-}
-
 }  // namespace
 
 void bindSim(py::module_& m) {
@@ -118,11 +101,18 @@ void bindSim(py::module_& m) {
            py::arg("seed"))
       .def_property_readonly(
           "landmarks",
-          [](const sim::PlanarLoopWorld& w) { return landmarkPositions(w.landmarks); },
+          [](const sim::PlanarLoopWorld& w) {
+            return arrayOf<double>(w.landmarks.size(), 2, [&](std::size_t i, int c) {
+              return w.landmarks[i].position[c];
+            });
+          },
           "True landmark positions (n, 2).")
       .def_property_readonly(
           "landmark_ids",
-          [](const sim::PlanarLoopWorld& w) { return landmarkIds(w.landmarks); },
+          [](const sim::PlanarLoopWorld& w) {
+            return arrayOf<sylva::Id>(
+                w.landmarks.size(), 0, [&](std::size_t i, int) { return w.landmarks[i].id; });
+          },
           "Their ids (n,).")
       .def_property_readonly("dt", [](const sim::PlanarLoopWorld& w) { return w.trajectory.dt(); })
       .def_property_readonly(
@@ -138,23 +128,16 @@ void bindSim(py::module_& m) {
           "simulate",
           [](const sim::PlanarLoopWorld& w, int steps, sim::Rng& rng) {
             const auto truth = w.trajectory.simulate(steps, rng);
-            const auto n = static_cast<py::ssize_t>(truth.size());
-            py::array_t<double> time(n), poses({n, py::ssize_t{3}}), controls({n, py::ssize_t{2}}),
-                odometry({n, py::ssize_t{2}});
-            for (py::ssize_t k = 0; k < n; ++k) {
-              const auto& s = truth[static_cast<std::size_t>(k)];
-              time.mutable_at(k) = s.time_s;
-              for (int i = 0; i < 3; ++i) poses.mutable_at(k, i) = s.true_pose[i];
-              for (int i = 0; i < 2; ++i) {
-                controls.mutable_at(k, i) = s.true_control[i];
-                odometry.mutable_at(k, i) = s.odometry[i];
-              }
-            }
+            const auto n = truth.size();
             py::dict out;
-            out["time"] = time;
-            out["true_pose"] = poses;
-            out["true_control"] = controls;
-            out["odometry"] = odometry;
+            out["time"] =
+                arrayOf<double>(n, 0, [&](std::size_t k, int) { return truth[k].time_s; });
+            out["true_pose"] =
+                arrayOf<double>(n, 3, [&](std::size_t k, int c) { return truth[k].true_pose[c]; });
+            out["true_control"] = arrayOf<double>(
+                n, 2, [&](std::size_t k, int c) { return truth[k].true_control[c]; });
+            out["odometry"] =
+                arrayOf<double>(n, 2, [&](std::size_t k, int c) { return truth[k].odometry[c]; });
             return out;
           },
           py::arg("steps"),
@@ -166,16 +149,10 @@ void bindSim(py::module_& m) {
           "observe",
           [](const sim::PlanarLoopWorld& w, const py::handle& pose, sim::Rng& rng) {
             const auto readings = w.sensor.observe(toVec<3>(pose, "pose"), w.landmarks, rng);
-            const auto n = static_cast<py::ssize_t>(readings.size());
-            py::array_t<double> Z({n, py::ssize_t{2}});
-            py::array_t<sylva::Id> ids(n);
-            for (py::ssize_t i = 0; i < n; ++i) {
-              const auto& r = readings[static_cast<std::size_t>(i)];
-              Z.mutable_at(i, 0) = r.z[0];
-              Z.mutable_at(i, 1) = r.z[1];
-              ids.mutable_at(i) = r.id;
-            }
-            return py::make_tuple(Z, ids);
+            const auto n = readings.size();
+            return py::make_tuple(
+                arrayOf<double>(n, 2, [&](std::size_t i, int c) { return readings[i].z[c]; }),
+                arrayOf<sylva::Id>(n, 0, [&](std::size_t i, int) { return readings[i].id; }));
           },
           py::arg("pose"),
           py::arg("rng"),
