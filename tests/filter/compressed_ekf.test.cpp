@@ -218,14 +218,14 @@ void randomizedRun(unsigned seed, sylva::LinearizationPoint point, int steps = 1
 }  // namespace
 
 TEST_CASE("compressed EKF: long randomized runs equal the plain filter at every global update and every read",
-          "[filter][compressed]") {
+          "[filter][compressed][slow]") {
   for (unsigned seed = 1; seed <= 6; ++seed) {
     INFO("seed " << seed);
     randomizedRun<sylva::Ekf<sylva::Unicycle2D, sylva::Point2>>(seed, sylva::LinearizationPoint::kCurrentEstimate);
   }
 }
 
-TEST_CASE("compressed EKF: the Joseph form compresses too", "[filter][compressed]") {
+TEST_CASE("compressed EKF: the Joseph form compresses too", "[filter][compressed][slow]") {
   for (unsigned seed = 11; seed <= 14; ++seed) {
     INFO("seed " << seed);
     randomizedRun<sylva::JosephEkf<sylva::Unicycle2D, sylva::Point2>>(seed, sylva::LinearizationPoint::kCurrentEstimate);

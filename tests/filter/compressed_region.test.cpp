@@ -233,7 +233,7 @@ TEST_CASE("compressed EKF: local steps and one global update give the plain EKF'
 }
 
 TEST_CASE("compressed EKF: a run through several regions stays equal to the plain EKF at every global update",
-          "[filter][compressed]") {
+          "[filter][compressed][slow]") {
   for (unsigned seed = 1; seed <= 10; ++seed) {
     INFO("seed " << seed);
     Random random(100 + seed);
