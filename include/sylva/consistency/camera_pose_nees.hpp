@@ -38,7 +38,10 @@ struct CameraPoseError {
   Mat<6, 6> S;
 };
 
-inline CameraPoseError cameraPoseError(const Vec<13>& estimate, const Mat<13, 13>& covariance, const Vec<13>& truth) {
+template <int = 0>  // compiled only where called (docs/build-time.md)
+CameraPoseError cameraPoseError(const Vec<13>& estimate,
+                                const Mat<13, 13>& covariance,
+                                const Vec<13>& truth) {
   if (!estimate.allFinite() || !truth.allFinite())
     fail(ErrorCode::kNonFinite, "cameraPoseNees: the estimate or the true state is not finite");
   const auto conj = [](const Vec<4>& q) { return Vec<4>(q[0], -q[1], -q[2], -q[3]); };
@@ -52,42 +55,50 @@ inline CameraPoseError cameraPoseError(const Vec<13>& estimate, const Mat<13, 13
     q_true = -q_true;  // same rotation, the short way
   CameraPoseError out;
   out.e.head<3>() = truth.head<3>() - estimate.head<3>();
-  out.e.tail<3>() = 2.0 * quaternionProduct<double>(conj(q), q_true).tail<3>();
+  out.e.tail<3>() = 2.0 * quaternionProduct<double>(conj(q), q_true).template tail<3>();
   Mat<6, 7> G = Mat<6, 7>::Zero();
   G.topLeftCorner<3, 3>() = -Mat<3, 3>::Identity();
   for (int i = 0; i < 4; ++i)
     G.block<3, 1>(3, 3 + i) =
-        2.0 * quaternionProduct<double>(conj(Vec<4>::Unit(i)), q_true).tail<3>();
+        2.0 * quaternionProduct<double>(conj(Vec<4>::Unit(i)), q_true).template tail<3>();
   out.S = G * covariance.topLeftCorner<7, 7>() * G.transpose();
   return out;
 }
 
 /// The camera pose's error on the manifold: e = (truth (-) estimate)'s pose part, and the
 /// tangent covariance's pose block (see the top of this file).
-inline CameraPoseError cameraPoseErrorOnManifold(const Vec<13>& estimate, const Mat<12, 12>& covariance,
-                                                 const Vec<13>& truth) {
+template <int = 0>  // compiled only where called (docs/build-time.md)
+CameraPoseError cameraPoseErrorOnManifold(const Vec<13>& estimate,
+                                          const Mat<12, 12>& covariance,
+                                          const Vec<13>& truth) {
   if (!estimate.allFinite() || !truth.allFinite())
     fail(ErrorCode::kNonFinite, "cameraPoseNees: the estimate or the true state is not finite");
   const Vec<4> q = estimate.segment<4>(Pose3D::kQuaternion);
   const double true_norm = truth.segment<4>(Pose3D::kQuaternion).norm();
   if (!(q.norm() > 1e-12) || !(true_norm > 1e-12))
-    fail(ErrorCode::kDegenerateGeometry, "cameraPoseNees: an orientation quaternion has (near) zero norm");
+    fail(ErrorCode::kDegenerateGeometry,
+         "cameraPoseNees: an orientation quaternion has (near) zero norm");
   CameraPoseError out;
   out.e.head<3>() = truth.head<3>() - estimate.head<3>();
-  out.e.tail<3>() = rotationVectorFromQuaternion(quaternionProduct<double>(
-      Vec<4>(q[0], -q[1], -q[2], -q[3]) / q.norm(), Vec<4>(truth.segment<4>(Pose3D::kQuaternion) / true_norm)));
+  out.e.tail<3>() = rotationVectorFromQuaternion(
+      quaternionProduct<double>(Vec<4>(q[0], -q[1], -q[2], -q[3]) / q.norm(),
+                                Vec<4>(truth.segment<4>(Pose3D::kQuaternion) / true_norm)));
   out.S = covariance.topLeftCorner<6, 6>();
   return out;
 }
 
-inline double cameraPoseNeesOnManifold(const Vec<13>& estimate, const Mat<12, 12>& covariance, const Vec<13>& truth) {
+template <int = 0>  // compiled only where called (docs/build-time.md)
+double cameraPoseNeesOnManifold(const Vec<13>& estimate,
+                                const Mat<12, 12>& covariance,
+                                const Vec<13>& truth) {
   const CameraPoseError pose = cameraPoseErrorOnManifold(estimate, covariance, truth);
   return nees(pose.e, pose.S);
 }
 
-inline double cameraPoseNees(const Vec<13>& estimate,
-                             const Mat<13, 13>& covariance,
-                             const Vec<13>& truth) {
+template <int = 0>  // compiled only where called (docs/build-time.md)
+double cameraPoseNees(const Vec<13>& estimate,
+                      const Mat<13, 13>& covariance,
+                      const Vec<13>& truth) {
   const CameraPoseError pose = cameraPoseError(estimate, covariance, truth);
   return nees(pose.e, pose.S);
 }
