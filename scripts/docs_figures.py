@@ -30,6 +30,7 @@ scripts/regenerate_docs.sh calls these; run it rather than this script.
 import argparse
 import glob
 import json
+import math
 import os
 import re
 import shutil
@@ -403,8 +404,44 @@ def forest_association_figures(out):
                         out[f"nnuv_{seed}"][key]["association"]["correct_fraction"]) for seed in seeds]
         figures[f"{key}_width_gain_median_pts"] = fixed(statistics.median(gains), 1)
         figures[f"{key}_width_gain_forests_better"] = f"{sum(g > 0 for g in gains)} of {len(gains)}"
+    # The continuity test (TreeSlamOptions::continuity_cost) on against off, paired by forest:
+    # the same sightings. Two-sided exact sign test over the forests whose share moved.
+    continuity_rows = []
+    for key, name in pipelines:
+        share = lambda prefix, seed: 100 * out[f"{prefix}_{seed}"][key]["association"]["correct_fraction"]
+        gains = [share("nn", seed) - share("nnoff", seed) for seed in seeds]
+        better, worse = sum(g > 0 for g in gains), sum(g < 0 for g in gains)
+        moved = better + worse
+        tail = sum(math.comb(moved, i) for i in range(0, min(better, worse) + 1)) / 2 ** moved if moved else 1.0
+        p_value = min(1.0, 2 * tail)
+
+        def error_ratio(prefix, error):
+            values = []
+            for seed in seeds:
+                a, b = out[f"{prefix}_{seed}"][key][error], out[f"ids_{seed}"][key][error]
+                values.append(a / b if a is not None and b else float("inf"))
+            return statistics.median(values)
+
+        continuity_rows.append([name, fixed(statistics.median(share("nnoff", seed) for seed in seeds), 1),
+                                fixed(statistics.median(share("nn", seed) for seed in seeds), 1),
+                                fixed(statistics.median(gains), 1), f"{better} of {len(gains)}", f"{p_value:.3g}",
+                                f"{fixed(error_ratio('nnoff', 'landmark_error'), 2)} / "
+                                f"{fixed(error_ratio('nn', 'landmark_error'), 2)}",
+                                f"{fixed(error_ratio('nnoff', 'trajectory_error'), 2)} / "
+                                f"{fixed(error_ratio('nn', 'trajectory_error'), 2)}"])
+        figures[f"{key}_continuity_gain_median_pts"] = fixed(statistics.median(gains), 1)
+        figures[f"{key}_continuity_forests_better"] = f"{better} of {len(gains)}"
+        figures[f"{key}_continuity_sign_test_p"] = f"{p_value:.3g}"
+        figures[f"{key}_off_median_pct"] = fixed(statistics.median(share("nnoff", seed) for seed in seeds), 1)
+    figures["continuity_table"] = table(
+        ["pipeline", "taken right, test off (%), median", "taken right, test on (%), median",
+         "paired gain (points), median", "forests better", "sign test p", "e_l / ids, off / on, median",
+         "e_t / ids, off / on, median"], continuity_rows)
     # The default forest: the share taken right by each pipeline, and the thesis pipeline's
     # errors against its run with ids.
+    off = out["defaultforest_nnoff"]
+    for key, _ in pipelines:
+        figures[f"default_{key}_off_pct"] = fixed(100 * off[key]["association"]["correct_fraction"], 1)
     ids, nn = out["defaultforest_ids"], out["defaultforest_nn"]
     figures["default_seed"] = str(nn["seed"])
     for key, _ in pipelines:
@@ -412,6 +449,8 @@ def forest_association_figures(out):
     for key, name in (("landmark_error", "el"), ("trajectory_error", "et")):
         a, b = nn["with_width"][key], ids["with_width"][key]
         figures[f"default_{name}_ratio"] = fixed(a / b, 2) if a is not None and b else "inf"
+        a = off["with_width"][key]
+        figures[f"default_{name}_ratio_off"] = fixed(a / b, 2) if a is not None and b else "inf"
     return {
         "seeds": f"{seeds[0]}-{seeds[-1]}",
         "table": table(["forest seed", "sightings", "taken right (%)", "paired with another tree",
@@ -520,6 +559,10 @@ SOURCES = {
                                       f"--json --svg-prefix ''" for k in range(1, 11)},
                  **{f"nnuv_{k}": f"{{bin}}/forest_slam/forest_slam --seed {k} --association nn --no-width-appearance "
                                  f"--json --svg-prefix ''" for k in range(1, 11)},
+                 **{f"nnoff_{k}": f"{{bin}}/forest_slam/forest_slam --seed {k} --association nn --continuity-cost inf "
+                                  f"--json --svg-prefix ''" for k in range(1, 11)},
+                 "defaultforest_nnoff": "{bin}/forest_slam/forest_slam --association nn --continuity-cost inf --json "
+                                        "--svg-prefix ''",
                  # The default forest (forest_slam's --seed default), the case issue 18 names.
                  "defaultforest_ids": "{bin}/forest_slam/forest_slam --json --svg-prefix ''",
                  "defaultforest_nn": "{bin}/forest_slam/forest_slam --association nn --json --svg-prefix ''"},
@@ -531,7 +574,11 @@ SOURCES = {
                   **{f"nnvisible_{k}": f"{{bin}}/forest_slam/forest_slam --seed {k} --frames 200 --association nn "
                                        f"--no-occlusion --json --svg-prefix ''" for k in range(1, 3)},
                   **{f"nnuv_{k}": f"{{bin}}/forest_slam/forest_slam --seed {k} --frames 200 --association nn "
-                                  f"--no-width-appearance --json --svg-prefix ''" for k in range(1, 3)}},
+                                  f"--no-width-appearance --json --svg-prefix ''" for k in range(1, 3)},
+                  **{f"nnoff_{k}": f"{{bin}}/forest_slam/forest_slam --seed {k} --frames 200 --association nn "
+                                   f"--continuity-cost inf --json --svg-prefix ''" for k in range(1, 3)},
+                  "defaultforest_nnoff": "{bin}/forest_slam/forest_slam --frames 200 --association nn "
+                                         "--continuity-cost inf --json --svg-prefix ''"},
         "figures": forest_association_figures,
     },
     "threads": {

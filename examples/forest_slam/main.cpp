@@ -305,6 +305,15 @@ int main(int argc, char** argv) {
                  "--association nn: relative standard deviation of a point landmark's predicted width beyond the "
                  "width noise")
       ->check(CLI::Range(0.0, 10.0));
+  app.add_option("--continuity-cost", slam_options.continuity_cost,
+                 "--association nn: the continuity test's largest cost, NIS + log det(S R^-1), of a pairing "
+                 "with a tree not sighted in the previous frame or of a sighting near the image's left or right "
+                 "edge ('inf': off)")
+      ->capture_default_str();
+  app.add_option("--continuity-edge-margin", slam_options.continuity_edge_margin_px,
+                 "--association nn: the continuity test's margin (pixels) at the image's left and right edges "
+                 "(< 0: none)")
+      ->capture_default_str();
   std::string csv_prefix, write_recording, detections_file, camera_file, initial_state_file;
   app.add_option("--csv-prefix", csv_prefix,
                  "write each pipeline's estimate: PREFIX_<pipeline>_trajectory.csv and PREFIX_<pipeline>_map.csv");

@@ -130,6 +130,8 @@ void bindMonocular(py::module_& m) {
       .def_readwrite("width_appearance", &slam::TreeSlamOptions::width_appearance)
       .def_readwrite("width_appearance_tolerance",
                      &slam::TreeSlamOptions::width_appearance_tolerance)
+      .def_readwrite("continuity_cost", &slam::TreeSlamOptions::continuity_cost)
+      .def_readwrite("continuity_edge_margin_px", &slam::TreeSlamOptions::continuity_edge_margin_px)
       .def_readwrite("fusion", &slam::TreeSlamOptions::fusion);
 
   py::class_<slam::FrameReport>(m, "FrameReport", "What one frame of the monocular pipeline did.")

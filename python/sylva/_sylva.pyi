@@ -561,6 +561,8 @@ class TreeSlamOptions:
     new_tree_probability: float
     width_appearance: bool
     width_appearance_tolerance: float
+    continuity_cost: float
+    continuity_edge_margin_px: float
     fusion: Fusion
     def __init__(self) -> None: ...
 

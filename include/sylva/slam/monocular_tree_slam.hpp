@@ -54,6 +54,7 @@
 #include <cstdint>
 #include <type_traits>
 #include <unordered_map>
+#include <unordered_set>
 #include <utility>
 #include <vector>
 
@@ -115,8 +116,9 @@ enum class TrunkAssociation {
   /// radius) at the predicted state, points also on the width predicted from their last
   /// sighting (`TreeSlamOptions::width_appearance`), within a chi-square gate; each tree
   /// takes at most one sighting (greedy by NIS over its gate). A sighting that pairs with no
-  /// tree starts one only when its NIS to every tree exceeds chi2(dim, new_tree_probability);
-  /// otherwise it is ambiguous and dropped.
+  /// tree starts one only when its NIS to every tree exceeds chi2(dim, new_tree_probability),
+  /// or when no tree within that gate explains it at the continuity test's cost
+  /// (`TreeSlamOptions::continuity_cost`); otherwise it is ambiguous and dropped.
   kNearestNeighbor,
 };
 inline const char* associationName(TrunkAssociation a) {
@@ -168,6 +170,20 @@ struct TreeSlamOptions {
   /// Relative standard deviation of that predicted width beyond the width noise: the error of
   /// the depth ratio d_last / d.
   double width_appearance_tolerance = 0.05;
+  /// kNearestNeighbor, the continuity test: where a track may have changed trees unseen, a
+  /// pairing compared on [u, v, w] must also cost less than this. The cost is
+  /// NIS + log det(S R^-1), -2 log of the sighting's likelihood under the tree's prediction
+  /// N(z_hat, S) over its peak under the measurement noise R alone: a tree whose prediction is
+  /// wide (a young landmark, its depth still open) explains a sighting poorly wherever it
+  /// falls, and the sighting starts a tree of its own. The test applies to a tree not sighted
+  /// in the previous frame (it was hidden, or out of view), and to a sighting within
+  /// `continuity_edge_margin_px` of the image's left or right edge (where trees come into view,
+  /// possibly in front of the one a young landmark stands for). A tree sighted in the previous
+  /// frame, away from the edges, continues its track on the gate alone. Infinity: off.
+  /// Chosen on development forests (docs/slam.md, "The continuity test").
+  double continuity_cost = 10.5;
+  /// The continuity test's margin (pixels) at the image's left and right edges (< 0: none).
+  double continuity_edge_margin_px = 15.0;
   /// How each model's observations of a frame are fused: in one batched update per model
   /// (one linearization point, one pass over P), or one update per observation, each
   /// linearized after the previous one (`Fusion`, filter/ekf.hpp).
@@ -373,6 +389,8 @@ class BasicMonocularTreeSlam {
   std::vector<Seen> sightings_;
   Id next_tree_id_ = 0;  ///< kNearestNeighbor: the next new tree's id (mapped ids skipped)
   std::unordered_map<Id, Appearance> appearance_;
+  /// kNearestNeighbor: the trees sighted in the previous frame (the continuity test).
+  std::unordered_set<Id> sighted_last_frame_;
   FrameProfile* profile_ = nullptr;
 };
 

@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <optional>
+#include <string>
 #include <tuple>
 #include <vector>
 #include <type_traits>
@@ -56,6 +57,12 @@ BasicMonocularTreeSlam<Camera>::BasicMonocularTreeSlam(const TreeSlamOptions& op
               .finished())),
       pixel_noise_(Gaussian<2>::sigmas(Vec<2>::Constant(options.pixel_sigma_px))),
       tree_noise_(Gaussian<3>::sigmas(Vec<3>(options.pixel_sigma_px, options.pixel_sigma_px, options.width_sigma_px))) {
+  if (std::isnan(options.continuity_cost) || !std::isfinite(options.continuity_edge_margin_px)) {
+    fail(ErrorCode::kInvalidArgument,
+         "TreeSlamOptions: continuity_cost must be a number (infinity turns the continuity test off), got " +
+             std::to_string(options.continuity_cost) + ", and continuity_edge_margin_px finite, got " +
+             std::to_string(options.continuity_edge_margin_px));
+  }
   ekf_.setLinearizationPoint(options.linearization);
   ekf_.setGaugeInverse(options.gauge_inverse);
   gate_.fill(std::numeric_limits<double>::infinity());
@@ -149,7 +156,12 @@ FrameReport BasicMonocularTreeSlam<Camera>::processFrame(double dt,
     }
   }
   if (ideal) setIdealLandmarks(*truth);  // for the landmarks added or converted above
-  if (options_.association == TrunkAssociation::kNearestNeighbor && options_.width_appearance) recordAppearance();
+  if (options_.association == TrunkAssociation::kNearestNeighbor) {
+    if (options_.width_appearance) recordAppearance();
+    sighted_last_frame_.clear();
+    for (const Seen& s : sightings_)
+      if (s.id >= 0) sighted_last_frame_.insert(s.id);
+  }
   return report;
 }
 
@@ -169,6 +181,18 @@ typename BasicMonocularTreeSlam<Camera>::NearestPairing BasicMonocularTreeSlam<C
   std::vector<Pairing> candidates;
   std::vector<Id> trees;
   std::vector<double> closest(seen.size(), kUnpredictable);  // smallest NIS over the new-tree gate
+  // The continuity test (TreeSlamOptions::continuity_cost): whether some tree within the
+  // new-tree gate explains the sighting at that cost, and which sightings it applies to at any
+  // tree, being near the image's left or right edge.
+  const double max_cost = options_.continuity_cost;
+  std::vector<char> explained(seen.size(), 0);
+  std::vector<char> at_edge(seen.size(), 0);
+  for (std::size_t i = 0; i < seen.size(); ++i) {
+    const double margin = options_.continuity_edge_margin_px;
+    const double half_width = 0.5 * seen[i].z[2];
+    at_edge[i] = margin >= 0.0 && (seen[i].z[0] - half_width < margin ||
+                                   seen[i].z[0] + half_width > options_.camera.width - margin);
+  }
   // Each tree is linearized once, through its own model, and its S factored once.
   for (const LandmarkSlot& slot : ekf.slots()) {
     ekf.visit(slot.id, [&](auto type) {
@@ -209,6 +233,18 @@ typename BasicMonocularTreeSlam<Camera>::NearestPairing BasicMonocularTreeSlam<C
           dof = 3;
         }
       }
+      // log det(S R^-1) for the continuity cost, R being the noise of the sighting's [u, v, w]
+      // (the width's share of a point landmark: its predicted width's variance over the
+      // width noise).
+      double log_det_ratio = 0.0;
+      for (int r = 0; r < M; ++r) log_det_ratio += 2.0 * std::log(llt.matrixL()(r, r));
+      if constexpr (M == 2) {
+        log_det_ratio -= std::log(pixel_noise_.covariance().determinant());
+        if (dof != M) log_det_ratio += std::log(width_variance / (options_.width_sigma_px * options_.width_sigma_px));
+      } else {
+        log_det_ratio -= std::log(tree_noise_.covariance().determinant());
+      }
+      const bool tree_continues = sighted_last_frame_.count(slot.id) != 0;
       for (std::size_t i = 0; i < seen.size(); ++i) {
         Vec<M> z;
         if constexpr (M == 2) {
@@ -219,7 +255,10 @@ typename BasicMonocularTreeSlam<Camera>::NearestPairing BasicMonocularTreeSlam<C
         double nis = llt.matrixL().solve(Vec<M>(sylva::detail::residual(model, z, lin.z_hat))).squaredNorm();
         if (dof != M) nis += (seen[i].z[2] - width_hat) * (seen[i].z[2] - width_hat) / width_variance;
         closest[i] = std::min(closest[i], nis / new_gate[dof]);
-        if (nis < pair_gate[dof]) candidates.push_back({nis / pair_gate[dof], i, j});
+        const bool tested = dof == 3 && (!tree_continues || at_edge[i]);
+        const bool continuous = !tested || nis + log_det_ratio < max_cost;
+        if (nis < new_gate[dof] && continuous) explained[i] = 1;
+        if (nis < pair_gate[dof] && continuous) candidates.push_back({nis / pair_gate[dof], i, j});
       }
     });
   }
@@ -235,7 +274,7 @@ typename BasicMonocularTreeSlam<Camera>::NearestPairing BasicMonocularTreeSlam<C
     tree_taken[c.tree] = 1;
     out.tree[c.sighting] = trees[c.tree];
   }
-  for (std::size_t i = 0; i < seen.size(); ++i) out.clear[i] = closest[i] > 1.0 ? 1 : 0;
+  for (std::size_t i = 0; i < seen.size(); ++i) out.clear[i] = closest[i] > 1.0 || !explained[i] ? 1 : 0;
   return out;
 }
 
