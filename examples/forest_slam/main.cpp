@@ -195,7 +195,7 @@ int runOnRecording(const forest_slam::Recording& recording, const TreeSlamOption
       forest_slam::writeForestSvg(svg_prefix + "_" + p.key + ".svg", svg);
     }
     out[p.key] = {{"fused", totals.fused},        {"added", totals.added},
-                  {"ambiguous", totals.ambiguous}, {"rejected", totals.rejected},
+                  {"ambiguous", totals.ambiguous}, {"rejected", totals.rejected}, {"removed", totals.removed},
                   {"trees_in_euclidean_form", e.trees.size()}};
   }
   sylva_examples::writeResult(std::cout, json, "forest_slam on a recording: the three pipelines", out);
@@ -314,6 +314,15 @@ int main(int argc, char** argv) {
                  "--association nn: the continuity test's margin (pixels) at the image's left and right edges "
                  "(< 0: none)")
       ->capture_default_str();
+  app.add_option("--unconfirmed-after", slam_options.unconfirmed_after_frames,
+                 "remove a landmark that took fewer than --confirm-sightings sightings once this many frames pass "
+                 "without one (0: never)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--confirm-sightings", slam_options.confirm_sightings,
+                 "sightings that confirm a landmark (--unconfirmed-after)")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
   std::string csv_prefix, write_recording, detections_file, camera_file, initial_state_file;
   app.add_option("--csv-prefix", csv_prefix,
                  "write each pipeline's estimate: PREFIX_<pipeline>_trajectory.csv and PREFIX_<pipeline>_map.csv");

@@ -103,6 +103,7 @@ Estimate runRecordingWith(const Recording& recording, TreeSlamOptions options, i
     totals.added += report.added;
     totals.rejected += report.rejected;
     totals.ambiguous += report.ambiguous;
+    totals.removed += report.removed;
     out.t_s.push_back(frame.t_s);
     out.path.push_back(slam.filter().robotMean().template head<3>());
   }

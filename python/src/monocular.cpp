@@ -132,6 +132,8 @@ void bindMonocular(py::module_& m) {
                      &slam::TreeSlamOptions::width_appearance_tolerance)
       .def_readwrite("continuity_cost", &slam::TreeSlamOptions::continuity_cost)
       .def_readwrite("continuity_edge_margin_px", &slam::TreeSlamOptions::continuity_edge_margin_px)
+      .def_readwrite("unconfirmed_after_frames", &slam::TreeSlamOptions::unconfirmed_after_frames)
+      .def_readwrite("confirm_sightings", &slam::TreeSlamOptions::confirm_sightings)
       .def_readwrite("fusion", &slam::TreeSlamOptions::fusion);
 
   py::class_<slam::FrameReport>(m, "FrameReport", "What one frame of the monocular pipeline did.")
@@ -143,6 +145,7 @@ void bindMonocular(py::module_& m) {
       .def_readonly("rejected", &slam::FrameReport::rejected)
       .def_readonly("hypotheses", &slam::FrameReport::hypotheses)
       .def_readonly("ambiguous", &slam::FrameReport::ambiguous)
+      .def_readonly("removed", &slam::FrameReport::removed)
       .def_readonly("landmark_of",
                     &slam::FrameReport::landmark_of,
                     "per sighting: the landmark it was taken as, or -1 when dropped as ambiguous");

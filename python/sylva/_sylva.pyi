@@ -563,6 +563,8 @@ class TreeSlamOptions:
     width_appearance_tolerance: float
     continuity_cost: float
     continuity_edge_margin_px: float
+    unconfirmed_after_frames: int
+    confirm_sightings: int
     fusion: Fusion
     def __init__(self) -> None: ...
 
@@ -583,6 +585,8 @@ class FrameReport:
     def hypotheses(self) -> int: ...
     @property
     def ambiguous(self) -> int: ...
+    @property
+    def removed(self) -> int: ...
     @property
     def landmark_of(self) -> list[int]: ...
 

@@ -184,6 +184,12 @@ struct TreeSlamOptions {
   double continuity_cost = 10.5;
   /// The continuity test's margin (pixels) at the image's left and right edges (< 0: none).
   double continuity_edge_margin_px = 15.0;
+  /// Map management: a landmark that has taken fewer than `confirm_sightings` sightings is
+  /// removed once `unconfirmed_after_frames` frames pass without one (0: never). Such a
+  /// landmark's depth is barely constrained, and where the life cycle has made it Euclidean it
+  /// sits in the map far from its tree.
+  int unconfirmed_after_frames = 0;
+  int confirm_sightings = 3;
   /// How each model's observations of a frame are fused: in one batched update per model
   /// (one linearization point, one pass over P), or one update per observation, each
   /// linearized after the previous one (`Fusion`, filter/ekf.hpp).
@@ -211,6 +217,7 @@ struct FrameReport {
   int rejected = 0;   ///< observations or conversions refused by the filter, a model or the gate
   int hypotheses = 0; ///< 1 when the frame was re-anchored on a one-point hypothesis
   int ambiguous = 0;  ///< kNearestNeighbor: sightings dropped, neither paired nor clearly new
+  int removed = 0;    ///< landmarks removed unconfirmed (TreeSlamOptions::unconfirmed_after_frames)
   /// Per sighting, in the order given: the landmark it was taken as (its own id with known
   /// ids; the paired or new tree's id without), or -1 when it was dropped as ambiguous.
   std::vector<Id> landmark_of;
@@ -391,6 +398,15 @@ class BasicMonocularTreeSlam {
   std::unordered_map<Id, Appearance> appearance_;
   /// kNearestNeighbor: the trees sighted in the previous frame (the continuity test).
   std::unordered_set<Id> sighted_last_frame_;
+  /// Per landmark: sightings taken, and the frame of the last (unconfirmed_after_frames).
+  struct Sighted {
+    int count = 0;
+    int last_frame = 0;
+  };
+  std::unordered_map<Id, Sighted> sighted_;
+  int frame_index_ = 0;
+  /// Removes the landmarks that stay unconfirmed (TreeSlamOptions::unconfirmed_after_frames).
+  void removeUnconfirmed(FrameReport& report);
   FrameProfile* profile_ = nullptr;
 };
 

@@ -63,6 +63,12 @@ BasicMonocularTreeSlam<Camera>::BasicMonocularTreeSlam(const TreeSlamOptions& op
              std::to_string(options.continuity_cost) + ", and continuity_edge_margin_px finite, got " +
              std::to_string(options.continuity_edge_margin_px));
   }
+  if (options.unconfirmed_after_frames < 0 || options.confirm_sightings < 1) {
+    fail(ErrorCode::kInvalidArgument,
+         "TreeSlamOptions: unconfirmed_after_frames must be >= 0 (0: never remove), got " +
+             std::to_string(options.unconfirmed_after_frames) + ", and confirm_sightings >= 1, got " +
+             std::to_string(options.confirm_sightings));
+  }
   ekf_.setLinearizationPoint(options.linearization);
   ekf_.setGaugeInverse(options.gauge_inverse);
   gate_.fill(std::numeric_limits<double>::infinity());
@@ -156,6 +162,8 @@ FrameReport BasicMonocularTreeSlam<Camera>::processFrame(double dt,
     }
   }
   if (ideal) setIdealLandmarks(*truth);  // for the landmarks added or converted above
+  if (options_.unconfirmed_after_frames > 0) removeUnconfirmed(report);
+  ++frame_index_;
   if (options_.association == TrunkAssociation::kNearestNeighbor) {
     if (options_.width_appearance) recordAppearance();
     sighted_last_frame_.clear();
@@ -297,6 +305,31 @@ double BasicMonocularTreeSlam<Camera>::depthOf(const Filter& ekf, Id id) {
       return optical_axis.dot(Vec<3>(l.template head<3>() - t));
     }
   });
+}
+
+template <typename Camera>
+void BasicMonocularTreeSlam<Camera>::removeUnconfirmed(FrameReport& report) {
+  for (const Seen& s : sightings_) {
+    if (s.id < 0 || !ekf_.contains(s.id)) continue;
+    Sighted& record = sighted_[s.id];
+    ++record.count;
+    record.last_frame = frame_index_;
+  }
+  std::vector<Id> unconfirmed;
+  for (const LandmarkSlot& slot : ekf_.slots()) {
+    const auto it = sighted_.find(slot.id);
+    if (it == sighted_.end()) continue;
+    if (it->second.count < options_.confirm_sightings &&
+        frame_index_ - it->second.last_frame >= options_.unconfirmed_after_frames)
+      unconfirmed.push_back(slot.id);
+  }
+  for (const Id id : unconfirmed) {
+    ekf_.remove(id);
+    sighted_.erase(id);
+    appearance_.erase(id);
+    true_anchor_.erase(id);
+    ++report.removed;
+  }
 }
 
 template <typename Camera>
