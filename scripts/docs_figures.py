@@ -451,6 +451,52 @@ def forest_association_figures(out):
         figures[f"default_{name}_ratio"] = fixed(a / b, 2) if a is not None and b else "inf"
         a = off["with_width"][key]
         figures[f"default_{name}_ratio_off"] = fixed(a / b, 2) if a is not None and b else "inf"
+    # Removal of unconfirmed landmarks in both runs (REMOVAL), held out: per pipeline, the
+    # median over the forests of the errors without ids over those with, how many forests
+    # come within 10% on both, the share taken right, and the landmarks each run keeps; then
+    # the default forest.
+    figures["removal"] = REMOVAL
+    removal_rows = []
+    within = lambda el, et: el <= 1.1 and et <= 1.1  # noqa: E731
+
+    def ratios(nn, ids):
+        return [nn[k] / ids[k] if nn[k] is not None and ids[k] else float("inf")
+                for k in ("landmark_error", "trajectory_error")]
+
+    landmarks = lambda run: sum(run["trees_by_parametrization"].values())  # noqa: E731
+    dflt_ids, dflt_nn = out["defaultforest_idsrm"], out["defaultforest_nnrm"]
+    for key, name in pipelines:
+        pairs = [ratios(out[f"nnrm_{seed}"][key], out[f"idsrm_{seed}"][key]) for seed in seeds]
+        before = [ratios(out[f"nn_{seed}"][key], out[f"ids_{seed}"][key]) for seed in seeds]
+        el, et = ratios(dflt_nn[key], dflt_ids[key])
+        removal_rows.append([
+            name,
+            f"{fixed(statistics.median(p[0] for p in before), 2)} / {fixed(statistics.median(p[0] for p in pairs), 2)}",
+            f"{fixed(statistics.median(p[1] for p in before), 2)} / {fixed(statistics.median(p[1] for p in pairs), 2)}",
+            f"{sum(within(*p) for p in before)} / {sum(within(*p) for p in pairs)} of {len(pairs)}",
+            fixed(statistics.median(100 * out[f"nnrm_{seed}"][key]["association"]["correct_fraction"]
+                                    for seed in seeds), 1),
+            fixed(statistics.median(landmarks(out[f"nnrm_{seed}"][key]) / landmarks(out[f"idsrm_{seed}"][key])
+                                    for seed in seeds), 2),
+            f"{fixed(el, 2)} / {fixed(et, 2)}",
+            fixed(100 * dflt_nn[key]["association"]["correct_fraction"], 1)])
+        figures[f"removal_{key}_median_el_ratio"] = fixed(statistics.median(p[0] for p in pairs), 2)
+        figures[f"removal_{key}_median_et_ratio"] = fixed(statistics.median(p[1] for p in pairs), 2)
+        figures[f"removal_{key}_forests_within"] = f"{sum(within(*p) for p in pairs)} of {len(pairs)}"
+        figures[f"removal_default_{key}_el_ratio"] = fixed(el, 2)
+        figures[f"removal_default_{key}_et_ratio"] = fixed(et, 2)
+        figures[f"removal_default_{key}_pct"] = fixed(100 * dflt_nn[key]["association"]["correct_fraction"], 1)
+    for key, name in (("landmark_error", "el"), ("trajectory_error", "et")):
+        figures[f"removal_default_ids_{name}_before"] = fixed(ids["with_width"][key], 3)
+        figures[f"removal_default_ids_{name}"] = fixed(dflt_ids["with_width"][key], 3)
+    figures["removal_default_landmarks_ids"] = str(landmarks(dflt_ids["with_width"]))
+    figures["removal_default_landmarks_nn"] = str(landmarks(dflt_nn["with_width"]))
+    figures["removal_default_trees"] = str(dflt_ids["trees"])
+    figures["removal_table"] = table(
+        ["pipeline", "e_l nn / ids, median, without / with removal", "e_t nn / ids, median, without / with removal",
+         "forests within 10% on both, without / with removal", "taken right with removal (%), median",
+         "landmarks kept, nn / ids, median", "default forest with removal: e_l / e_t, nn / ids",
+         "default forest with removal: taken right (%)"], removal_rows)
     return {
         "seeds": f"{seeds[0]}-{seeds[-1]}",
         "table": table(["forest seed", "sightings", "taken right (%)", "paired with another tree",
@@ -505,6 +551,10 @@ def threads_figures(out):
     figures["build"] = f"{ctx.get('compiler', '?').strip()}, {ctx.get('cxx_flags', '?')}, Eigen SIMD {ctx.get('eigen_simd', '?')}"
     return figures
 
+
+# forest_slam's removal of unconfirmed landmarks (TreeSlamOptions::unconfirmed_after_frames,
+# confirm_sightings), as chosen on development forests 101-110 (docs/slam.md).
+REMOVAL = "--unconfirmed-after 30 --confirm-sightings 3"
 
 SOURCES = {
     "range-bearing-slam": {
@@ -565,7 +615,16 @@ SOURCES = {
                                         "--svg-prefix ''",
                  # The default forest (forest_slam's --seed default), the case issue 18 names.
                  "defaultforest_ids": "{bin}/forest_slam/forest_slam --json --svg-prefix ''",
-                 "defaultforest_nn": "{bin}/forest_slam/forest_slam --association nn --json --svg-prefix ''"},
+                 "defaultforest_nn": "{bin}/forest_slam/forest_slam --association nn --json --svg-prefix ''",
+                 # Removal of unconfirmed landmarks, both runs alike, at the values chosen on
+                 # development forests 101-110 (docs/slam.md): held out here.
+                 **{f"idsrm_{k}": f"{{bin}}/forest_slam/forest_slam --seed {k} {REMOVAL} --json --svg-prefix ''"
+                    for k in range(1, 11)},
+                 **{f"nnrm_{k}": f"{{bin}}/forest_slam/forest_slam --seed {k} --association nn {REMOVAL} --json "
+                                 f"--svg-prefix ''" for k in range(1, 11)},
+                 "defaultforest_idsrm": f"{{bin}}/forest_slam/forest_slam {REMOVAL} --json --svg-prefix ''",
+                 "defaultforest_nnrm": f"{{bin}}/forest_slam/forest_slam --association nn {REMOVAL} --json "
+                                       f"--svg-prefix ''"},
         "quick": {"defaultforest_ids": "{bin}/forest_slam/forest_slam --frames 200 --json --svg-prefix ''",
                   "defaultforest_nn": "{bin}/forest_slam/forest_slam --frames 200 --association nn --json --svg-prefix ''",**{f"ids_{k}": f"{{bin}}/forest_slam/forest_slam --seed {k} --frames 200 --json --svg-prefix ''"
                      for k in range(1, 3)},
@@ -578,7 +637,15 @@ SOURCES = {
                   **{f"nnoff_{k}": f"{{bin}}/forest_slam/forest_slam --seed {k} --frames 200 --association nn "
                                    f"--continuity-cost inf --json --svg-prefix ''" for k in range(1, 3)},
                   "defaultforest_nnoff": "{bin}/forest_slam/forest_slam --frames 200 --association nn "
-                                         "--continuity-cost inf --json --svg-prefix ''"},
+                                         "--continuity-cost inf --json --svg-prefix ''",
+                  **{f"idsrm_{k}": f"{{bin}}/forest_slam/forest_slam --seed {k} --frames 200 {REMOVAL} --json "
+                                   f"--svg-prefix ''" for k in range(1, 3)},
+                  **{f"nnrm_{k}": f"{{bin}}/forest_slam/forest_slam --seed {k} --frames 200 --association nn "
+                                  f"{REMOVAL} --json --svg-prefix ''" for k in range(1, 3)},
+                  "defaultforest_idsrm": f"{{bin}}/forest_slam/forest_slam --frames 200 {REMOVAL} --json "
+                                         f"--svg-prefix ''",
+                  "defaultforest_nnrm": f"{{bin}}/forest_slam/forest_slam --frames 200 --association nn {REMOVAL} "
+                                        f"--json --svg-prefix ''"},
         "figures": forest_association_figures,
     },
     "threads": {

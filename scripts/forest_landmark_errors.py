@@ -9,6 +9,9 @@ landmarks by their share of e_l, with how many sightings each took and whether i
 another landmark (a duplicate). Needs the package (README, "From Python"):
 
     build/python-venv/bin/python scripts/forest_landmark_errors.py --seed 26 --association nn
+
+With --duplicates it runs both laps and says in which lap the duplicate landmarks started: in lap 2
+they are trees mapped in lap 1 that the association failed to find again (a missed loop closure).
 """
 import argparse
 import sys
@@ -31,26 +34,41 @@ def main():
     parser.add_argument("--pixel-noise", type=float, default=1.0)
     parser.add_argument("--width-noise", type=float, default=1.0)
     parser.add_argument("--top", type=int, default=10, help="landmarks listed")
+    parser.add_argument("--unconfirmed-after", type=int, default=0,
+                        help="TreeSlamOptions::unconfirmed_after_frames (forest_slam's flag; 0: never)")
+    parser.add_argument("--confirm-sightings", type=int, default=3, help="TreeSlamOptions::confirm_sightings")
+    parser.add_argument("--duplicates", action="store_true",
+                        help="run both laps and say in which lap each duplicate started: a landmark whose first "
+                             "sighting's tree already had a landmark with at least --confirm-sightings sightings")
     args = parser.parse_args()
     args.laps = 2
     scenario_options, scenario = forest_run.make_scenario(args)
     options = forest_run.slam_options(args, scenario_options, PIPELINES[args.pipeline])
     if args.association == "nn":
         options.association = sylva.TrunkAssociation.NEAREST_NEIGHBOR
+    options.unconfirmed_after_frames = args.unconfirmed_after
+    options.confirm_sightings = args.confirm_sightings
     times, laps = scenario.frame_times, scenario.frame_laps
     slam = sylva.MonocularTreeSlam(options, scenario.camera_states[0])
     tree_of, sightings = {}, {}  # landmark -> the tree of the sighting that started it; count
     end_of_lap1 = None
+    landmarks_of_tree, duplicate_laps = {}, []
     for k in range(len(scenario)):
         ids, Z, _, _ = scenario.observations(k)
         report = slam.process_frame(0.0 if k == 0 else times[k] - times[k - 1], ids, Z)
         for tree, landmark in zip(ids, report.landmark_of):
             if landmark >= 0:
+                if landmark not in tree_of:
+                    confirmed = [i for i in landmarks_of_tree.get(tree, []) if sightings[i] >= args.confirm_sightings]
+                    if confirmed:
+                        duplicate_laps.append(int(laps[k]))
+                    landmarks_of_tree.setdefault(tree, []).append(landmark)
                 tree_of.setdefault(landmark, tree)
                 sightings[landmark] = sightings.get(landmark, 0) + 1
         if laps[k] == 0 and (k + 1 == len(scenario) or laps[k + 1] > 0):
             end_of_lap1 = slam.euclidean_landmarks()
-            break
+            if not args.duplicates:
+                break
     landmarks, positions, _ = end_of_lap1
     trees = np.array([tree_of[i] for i in landmarks], dtype=np.int64)
     T, e_l = forest_run.align(trees, positions, scenario)
@@ -70,6 +88,9 @@ def main():
         few = np.array([sightings.get(i, 0) <= most for i in landmarks])
         print(f"\nlandmarks with at most {most} sighting(s): {few.sum()} of {len(landmarks)}, "
               f"{squared[few].sum() / total:.1%} of e_l")
+    if args.duplicates:
+        print(f"\nduplicates started (a tree's landmark started while the tree had a confirmed one): "
+              + ", ".join(f"lap {lap + 1}: {duplicate_laps.count(lap)}" for lap in sorted(set(laps))))
 
 
 if __name__ == "__main__":
