@@ -365,6 +365,15 @@ def victoria_park_figures(out):
     }
 
 
+def sign_test(gains):
+    """Paired gains: how many are above and below zero, and the two-sided exact sign test's p
+    over those that moved."""
+    better, worse = sum(g > 0 for g in gains), sum(g < 0 for g in gains)
+    moved = better + worse
+    tail = sum(math.comb(moved, i) for i in range(0, min(better, worse) + 1)) / 2 ** moved if moved else 1.0
+    return better, worse, min(1.0, 2 * tail)
+
+
 def forest_association_figures(out):
     """docs/slam.md: forest_slam's association without ids (--association nn) against the run
     with the simulator's ids, per forest seed, for the pipeline with the tree-width sensor; and
@@ -410,10 +419,7 @@ def forest_association_figures(out):
     for key, name in pipelines:
         share = lambda prefix, seed: 100 * out[f"{prefix}_{seed}"][key]["association"]["correct_fraction"]
         gains = [share("nn", seed) - share("nnoff", seed) for seed in seeds]
-        better, worse = sum(g > 0 for g in gains), sum(g < 0 for g in gains)
-        moved = better + worse
-        tail = sum(math.comb(moved, i) for i in range(0, min(better, worse) + 1)) / 2 ** moved if moved else 1.0
-        p_value = min(1.0, 2 * tail)
+        better, worse, p_value = sign_test(gains)
 
         def error_ratio(prefix, error):
             values = []
@@ -451,6 +457,43 @@ def forest_association_figures(out):
         figures[f"default_{name}_ratio"] = fixed(a / b, 2) if a is not None and b else "inf"
         a = off["with_width"][key]
         figures[f"default_{name}_ratio_off"] = fixed(a / b, 2) if a is not None and b else "inf"
+    # The loop test (TreeSlamOptions::loop_pairings) on against off (--loop-pairings 0), paired
+    # by forest: the same sightings.
+    loop_rows = []
+    for key, name in pipelines:
+        share = lambda prefix, seed: 100 * out[f"{prefix}_{seed}"][key]["association"]["correct_fraction"]  # noqa: E731
+        gains = [share("nn", seed) - share("nnnoloop", seed) for seed in seeds]
+        better, worse, p_value = sign_test(gains)
+        duplicates = lambda prefix: statistics.median(  # noqa: E731
+            out[f"{prefix}_{seed}"][key]["association"]["duplicates"] for seed in seeds)
+        ratio = lambda prefix, error: statistics.median(  # noqa: E731
+            out[f"{prefix}_{seed}"][key][error] / out[f"ids_{seed}"][key][error]
+            if out[f"{prefix}_{seed}"][key][error] is not None and out[f"ids_{seed}"][key][error] else float("inf")
+            for seed in seeds)
+        loop_rows.append([name,
+                          f"{fixed(statistics.median(share('nnnoloop', s) for s in seeds), 1)} / "
+                          f"{fixed(statistics.median(share('nn', s) for s in seeds), 1)}",
+                          f"{fixed(min(share('nnnoloop', s) for s in seeds), 1)} / "
+                          f"{fixed(min(share('nn', s) for s in seeds), 1)}",
+                          f"{better} / {worse} of {len(gains)}", fixed(max(0.0, max(gains)), 1),
+                          fixed(min(0.0, min(gains)) + 0.0, 1),
+                          f"{p_value:.3g}",
+                          f"{fixed(duplicates('nnnoloop'), 1)} / {fixed(duplicates('nn'), 1)}",
+                          f"{fixed(ratio('nnnoloop', 'landmark_error'), 2)} / {fixed(ratio('nn', 'landmark_error'), 2)}",
+                          f"{fixed(ratio('nnnoloop', 'trajectory_error'), 2)} / "
+                          f"{fixed(ratio('nn', 'trajectory_error'), 2)}"])
+        figures[f"{key}_loop_worst_off_pct"] = fixed(min(share("nnnoloop", s) for s in seeds), 1)
+        figures[f"{key}_loop_worst_pct"] = fixed(min(share("nn", s) for s in seeds), 1)
+        figures[f"{key}_loop_forests_better"] = f"{better} of {len(gains)}"
+        figures[f"{key}_loop_forests_worse"] = f"{worse} of {len(gains)}"
+        figures[f"{key}_loop_largest_gain_pts"] = fixed(max(gains), 1)
+        figures[f"{key}_loop_largest_loss_pts"] = fixed(max(0.0, -min(gains)), 1)
+        figures[f"{key}_loop_sign_test_p"] = f"{p_value:.3g}"
+    figures["loop_table"] = table(
+        ["pipeline", "taken right (%), median, off / on", "worst forest (%), off / on", "forests better / worse",
+         "largest gain (points)", "largest loss (points, negative)", "sign test p",
+         "duplicate trees, median, off / on", "e_l / ids, median, off / on", "e_t / ids, median, off / on"],
+        loop_rows)
     # Removal of unconfirmed landmarks in both runs (REMOVAL), held out: per pipeline, the
     # median over the forests of the errors without ids over those with, how many forests
     # come within 10% on both, the share taken right, and the landmarks each run keeps; then
@@ -611,6 +654,8 @@ SOURCES = {
                                  f"--json --svg-prefix ''" for k in range(1, 11)},
                  **{f"nnoff_{k}": f"{{bin}}/forest_slam/forest_slam --seed {k} --association nn --continuity-cost inf "
                                   f"--json --svg-prefix ''" for k in range(1, 11)},
+                 **{f"nnnoloop_{k}": f"{{bin}}/forest_slam/forest_slam --seed {k} --association nn --loop-pairings 0 "
+                                     f"--json --svg-prefix ''" for k in range(1, 11)},
                  "defaultforest_nnoff": "{bin}/forest_slam/forest_slam --association nn --continuity-cost inf --json "
                                         "--svg-prefix ''",
                  # The default forest (forest_slam's --seed default), the case issue 18 names.
@@ -636,6 +681,8 @@ SOURCES = {
                                   f"--no-width-appearance --json --svg-prefix ''" for k in range(1, 3)},
                   **{f"nnoff_{k}": f"{{bin}}/forest_slam/forest_slam --seed {k} --frames 200 --association nn "
                                    f"--continuity-cost inf --json --svg-prefix ''" for k in range(1, 3)},
+                  **{f"nnnoloop_{k}": f"{{bin}}/forest_slam/forest_slam --seed {k} --frames 200 --association nn "
+                                      f"--loop-pairings 0 --json --svg-prefix ''" for k in range(1, 3)},
                   "defaultforest_nnoff": "{bin}/forest_slam/forest_slam --frames 200 --association nn "
                                          "--continuity-cost inf --json --svg-prefix ''",
                   **{f"idsrm_{k}": f"{{bin}}/forest_slam/forest_slam --seed {k} --frames 200 {REMOVAL} --json "

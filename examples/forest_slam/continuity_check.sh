@@ -14,6 +14,8 @@ set -euo pipefail
 bin="$1"
 tmp="$(mktemp -d "${TMPDIR:-/tmp}/forest_continuity.XXXXXX")"
 trap 'rm -rf "$tmp"' EXIT
+# shellcheck source=still_camera.sh
+source "$(dirname "${BASH_SOURCE[0]}")/still_camera.sh"
 header="# time_s, u_px, v_px, w_px"
 { echo "$header"; for k in $(seq 1 10); do echo "0.$((k - 1))1, 320, 300, 20"; done; } > "$tmp/centre.csv"
 { echo "$header"; for k in $(seq 1 10); do echo "0.$((k - 1))1, 12, 300, 20"; done; } > "$tmp/edge.csv"
@@ -23,21 +25,12 @@ header="# time_s, u_px, v_px, w_px"
     if ((k == 6 || k == 7)); then echo "0.$((k - 1))1, 500, 300, 20"; else echo "0.$((k - 1))1, 320, 300, 20"; fi
   done
 } > "$tmp/gap.csv"
-printf '# fx_px, fy_px, cx_px, cy_px, width_px, height_px\n500, 500, 320, 240, 640, 480\n' > "$tmp/camera.csv"
-printf '# r_WC (3), q_WC (w, x, y, z), v_W (3), omega_C (3)\n0, 0, 0, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0\n' > "$tmp/initial.csv"
+still_camera_files "$tmp"
 status=0
 expect() {  # case cost expected
   "$bin" --detections "$tmp/$1.csv" --camera "$tmp/camera.csv" --initial-state "$tmp/initial.csv" \
     --association nn --continuity-cost "$2" --svg-prefix "" --json > "$tmp/out.json"
-  for pipeline in with_width without_width width_first_sight; do
-    added=$(python3 -c 'import json, sys; print(json.load(open(sys.argv[1]))[sys.argv[2]]["added"])' \
-      "$tmp/out.json" "$pipeline")
-    echo "continuity_check: $1, cost $2, $pipeline: $added trees added"
-    if [[ "$added" != "$3" ]]; then
-      echo "continuity_check: $1, cost $2, $pipeline: expected $3 trees" >&2
-      status=1
-    fi
-  done
+  expect_trees_added continuity_check "$1, cost $2" "$3" "$tmp/out.json" || status=1
 }
 expect centre inf 1
 expect centre 0 1

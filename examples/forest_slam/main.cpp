@@ -314,6 +314,16 @@ int main(int argc, char** argv) {
                  "--association nn: the continuity test's margin (pixels) at the image's left and right edges "
                  "(< 0: none)")
       ->capture_default_str();
+  app.add_option("--loop-pairings", slam_options.loop_pairings,
+                 "--association nn: pairings with trees of at least --loop-sightings sightings that the continuity "
+                 "test refuses are taken together when at least this many are jointly compatible (a loop closed; "
+                 "0: off)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--loop-sightings", slam_options.loop_sightings,
+                 "--association nn: sightings a tree must have taken to count for --loop-pairings")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
   app.add_option("--unconfirmed-after", slam_options.unconfirmed_after_frames,
                  "remove a landmark that took fewer than --confirm-sightings sightings once this many frames pass "
                  "without one (0: never)")

@@ -11,13 +11,14 @@ set -euo pipefail
 bin="$1"
 tmp="$(mktemp -d "${TMPDIR:-/tmp}/forest_width_appearance.XXXXXX")"
 trap 'rm -rf "$tmp"' EXIT
+# shellcheck source=still_camera.sh
+source "$(dirname "${BASH_SOURCE[0]}")/still_camera.sh"
 {
   echo "# time_s, u_px, v_px, w_px"
   for k in $(seq 1 10); do echo "0.$((k - 1))1, 320, 300, 20"; done
   for k in $(seq 1 5); do echo "1.$((k - 1))1, 320, 300, 40"; done
 } > "$tmp/detections.csv"
-printf '# fx_px, fy_px, cx_px, cy_px, width_px, height_px\n500, 500, 320, 240, 640, 480\n' > "$tmp/camera.csv"
-printf '# r_WC (3), q_WC (w, x, y, z), v_W (3), omega_C (3)\n0, 0, 0, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0\n' > "$tmp/initial.csv"
+still_camera_files "$tmp"
 for run in width uv; do
   flags=()
   [[ "$run" == uv ]] && flags=(--no-width-appearance)

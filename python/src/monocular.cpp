@@ -132,6 +132,8 @@ void bindMonocular(py::module_& m) {
                      &slam::TreeSlamOptions::width_appearance_tolerance)
       .def_readwrite("continuity_cost", &slam::TreeSlamOptions::continuity_cost)
       .def_readwrite("continuity_edge_margin_px", &slam::TreeSlamOptions::continuity_edge_margin_px)
+      .def_readwrite("loop_pairings", &slam::TreeSlamOptions::loop_pairings)
+      .def_readwrite("loop_sightings", &slam::TreeSlamOptions::loop_sightings)
       .def_readwrite("unconfirmed_after_frames", &slam::TreeSlamOptions::unconfirmed_after_frames)
       .def_readwrite("confirm_sightings", &slam::TreeSlamOptions::confirm_sightings)
       .def_readwrite("fusion", &slam::TreeSlamOptions::fusion);

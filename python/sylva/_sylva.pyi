@@ -563,6 +563,8 @@ class TreeSlamOptions:
     width_appearance_tolerance: float
     continuity_cost: float
     continuity_edge_margin_px: float
+    loop_pairings: int
+    loop_sightings: int
     unconfirmed_after_frames: int
     confirm_sightings: int
     fusion: Fusion

@@ -74,6 +74,22 @@ def test_bad_frames_leave_the_pipeline_unchanged(scenario):
         sylva.MonocularTreeSlam(sylva.TreeSlamOptions(), np.zeros(12))
 
 
+@pytest.mark.parametrize("name, value, message", [
+    ("continuity_cost", float("nan"), "continuity_cost must be a number"),
+    ("continuity_edge_margin_px", float("inf"), "continuity_edge_margin_px finite"),
+    ("loop_pairings", -1, "loop_pairings must be >= 0"),
+    ("loop_sightings", -1, "loop_sightings >= 0"),
+    ("unconfirmed_after_frames", -1, "unconfirmed_after_frames must be >= 0"),
+    ("confirm_sightings", 0, "confirm_sightings >= 1"),
+])
+def test_bad_association_options_are_refused_by_name(scenario, name, value, message):
+    options = sylva.TreeSlamOptions()
+    setattr(options, name, value)
+    with pytest.raises(sylva.Error, match=message) as info:
+        sylva.MonocularTreeSlam(options, scenario.camera_states[0])
+    assert info.value.code == sylva.ErrorCode.INVALID_ARGUMENT
+
+
 def test_forest_run_equals_forest_slam():
     bin_dir = os.environ.get("SYLVA_EXAMPLES_BIN")
     program = Path(bin_dir or "") / "forest_slam" / "forest_slam"

@@ -184,6 +184,16 @@ struct TreeSlamOptions {
   double continuity_cost = 10.5;
   /// The continuity test's margin (pixels) at the image's left and right edges (< 0: none).
   double continuity_edge_margin_px = 15.0;
+  /// kNearestNeighbor, loops: pairings that the continuity test refuses one at a time, with
+  /// trees that have taken at least `loop_sightings` sightings, are judged together. After a
+  /// loop the map has drifted, and the trees of the first lap seen again are displaced
+  /// together: one at a time each looks like a takeover, but together they are consistent.
+  /// The set is grown greedily in order of NIS, keeping a pairing while the joint NIS of the
+  /// set (their innovations stacked, S with the cross-covariances between the trees' models)
+  /// stays within the pairing gate at its degrees of freedom, and is taken when it holds at
+  /// least `loop_pairings` pairings. 0: off. Chosen on development forests (docs/slam.md).
+  int loop_pairings = 3;
+  int loop_sightings = 30;
   /// Map management: a landmark that has taken fewer than `confirm_sightings` sightings is
   /// removed once `unconfirmed_after_frames` frames pass without one (0: never). Such a
   /// landmark's depth is barely constrained, and where the life cycle has made it Euclidean it
@@ -357,6 +367,25 @@ class BasicMonocularTreeSlam {
     std::vector<char> clear;  ///< per sighting: NIS to every tree beyond the new-tree gate
   };
   NearestPairing pairNearest(const Filter& ekf, const std::vector<Seen>& seen) const;
+  /// The loop test (TreeSlamOptions::loop_pairings): a tree's Jacobians and S, and a pairing
+  /// the continuity test refused, with its innovation.
+  struct LoopTree {
+    Eigen::MatrixXd J_x, J_l;  ///< H's two blocks: the camera's and the landmark's
+    int landmark_offset = 0;
+    Eigen::MatrixXd S;         ///< H P H^T + R in the model's dimensions
+    int dof = 0;               ///< 3 for a point landmark also compared on its predicted width
+    double width_hat = 0.0, width_variance = 0.0;
+  };
+  struct LoopPairing {
+    double nis;
+    std::size_t sighting;
+    std::size_t tree;
+    Eigen::VectorXd nu;
+  };
+  /// The largest set of the refused pairings, grown in order of NIS, whose joint NIS stays
+  /// within the pairing gate; empty when it holds fewer than loop_pairings.
+  std::vector<LoopPairing> loopSet(const Filter& ekf, const std::vector<Seen>& seen, const std::vector<LoopTree>& trees,
+                                   std::vector<LoopPairing> refused) const;
   /// Depth (camera-frame z, metres) of landmark `id`'s estimate in `ekf`'s camera; +inf for an
   /// inverse-depth landmark at or beyond infinity.
   static double depthOf(const Filter& ekf, Id id);
@@ -398,6 +427,8 @@ class BasicMonocularTreeSlam {
   std::unordered_map<Id, Appearance> appearance_;
   /// kNearestNeighbor: the trees sighted in the previous frame (the continuity test).
   std::unordered_set<Id> sighted_last_frame_;
+  /// kNearestNeighbor: sightings each landmark has taken (TreeSlamOptions::loop_sightings).
+  std::unordered_map<Id, int> sightings_taken_;
   /// Per landmark: sightings taken, and the frame of the last (unconfirmed_after_frames).
   struct Sighted {
     int count = 0;

@@ -63,6 +63,11 @@ BasicMonocularTreeSlam<Camera>::BasicMonocularTreeSlam(const TreeSlamOptions& op
              std::to_string(options.continuity_cost) + ", and continuity_edge_margin_px finite, got " +
              std::to_string(options.continuity_edge_margin_px));
   }
+  if (options.loop_pairings < 0 || options.loop_sightings < 0) {
+    fail(ErrorCode::kInvalidArgument,
+         "TreeSlamOptions: loop_pairings must be >= 0 (0: off), got " + std::to_string(options.loop_pairings) +
+             ", and loop_sightings >= 0, got " + std::to_string(options.loop_sightings));
+  }
   if (options.unconfirmed_after_frames < 0 || options.confirm_sightings < 1) {
     fail(ErrorCode::kInvalidArgument,
          "TreeSlamOptions: unconfirmed_after_frames must be >= 0 (0: never remove), got " +
@@ -168,7 +173,10 @@ FrameReport BasicMonocularTreeSlam<Camera>::processFrame(double dt,
     if (options_.width_appearance) recordAppearance();
     sighted_last_frame_.clear();
     for (const Seen& s : sightings_)
-      if (s.id >= 0) sighted_last_frame_.insert(s.id);
+      if (s.id >= 0) {
+        sighted_last_frame_.insert(s.id);
+        ++sightings_taken_[s.id];
+      }
   }
   return report;
 }
@@ -201,6 +209,12 @@ typename BasicMonocularTreeSlam<Camera>::NearestPairing BasicMonocularTreeSlam<C
     at_edge[i] = margin >= 0.0 && (seen[i].z[0] - half_width < margin ||
                                    seen[i].z[0] + half_width > options_.camera.width - margin);
   }
+  // The loop test (TreeSlamOptions::loop_pairings): each tree's linearization and S, and the
+  // pairings with trees of at least loop_sightings sightings that the continuity test refused.
+  const bool loops = options_.loop_pairings > 0;
+  std::vector<LoopTree> loop_trees;
+  std::vector<std::size_t> loop_tree_index;  // loop tree -> its index in `trees`
+  std::vector<LoopPairing> refused;
   // Each tree is linearized once, through its own model, and its S factored once.
   for (const LandmarkSlot& slot : ekf.slots()) {
     ekf.visit(slot.id, [&](auto type) {
@@ -253,6 +267,12 @@ typename BasicMonocularTreeSlam<Camera>::NearestPairing BasicMonocularTreeSlam<C
         log_det_ratio -= std::log(tree_noise_.covariance().determinant());
       }
       const bool tree_continues = sighted_last_frame_.count(slot.id) != 0;
+      const auto taken = sightings_taken_.find(slot.id);
+      const bool old_tree = loops && taken != sightings_taken_.end() && taken->second >= options_.loop_sightings;
+      if (old_tree) {
+        loop_trees.push_back({lin.J_z_x, lin.J_z_l, lin.landmark_offset, S, dof, width_hat, width_variance});
+        loop_tree_index.push_back(j);
+      }
       for (std::size_t i = 0; i < seen.size(); ++i) {
         Vec<M> z;
         if constexpr (M == 2) {
@@ -267,8 +287,17 @@ typename BasicMonocularTreeSlam<Camera>::NearestPairing BasicMonocularTreeSlam<C
         const bool continuous = !tested || nis + log_det_ratio < max_cost;
         if (nis < new_gate[dof] && continuous) explained[i] = 1;
         if (nis < pair_gate[dof] && continuous) candidates.push_back({nis / pair_gate[dof], i, j});
+        if (old_tree && nis < pair_gate[dof] && !continuous)
+          refused.push_back({nis, i, loop_trees.size() - 1, sylva::detail::residual(model, z, lin.z_hat)});
       }
     });
+  }
+  if (loops && refused.size() >= static_cast<std::size_t>(options_.loop_pairings)) {
+    // Taken ahead of every single pairing (a score below any NIS over its gate).
+    for (const LoopPairing& p : loopSet(ekf, seen, loop_trees, std::move(refused))) {
+      candidates.push_back({-1.0, p.sighting, loop_tree_index[p.tree]});
+      explained[p.sighting] = 1;
+    }
   }
   std::sort(candidates.begin(), candidates.end(), [](const Pairing& a, const Pairing& b) {
     return std::tie(a.score, a.sighting, a.tree) < std::tie(b.score, b.sighting, b.tree);
@@ -284,6 +313,80 @@ typename BasicMonocularTreeSlam<Camera>::NearestPairing BasicMonocularTreeSlam<C
   }
   for (std::size_t i = 0; i < seen.size(); ++i) out.clear[i] = closest[i] > 1.0 || !explained[i] ? 1 : 0;
   return out;
+}
+
+template <typename Camera>
+std::vector<typename BasicMonocularTreeSlam<Camera>::LoopPairing> BasicMonocularTreeSlam<Camera>::loopSet(
+    const Filter& ekf, const std::vector<Seen>& seen, const std::vector<LoopTree>& trees,
+    std::vector<LoopPairing> refused) const {
+  std::sort(refused.begin(), refused.end(), [](const LoopPairing& a, const LoopPairing& b) {
+    return std::tie(a.nis, a.sighting, a.tree) < std::tie(b.nis, b.sighting, b.tree);
+  });
+  // H P H^T of every tree with a refused pairing, from one product with the covariance (H's
+  // rows: each tree's model dimensions, zero outside its camera and landmark blocks).
+  std::vector<int> first_row(trees.size(), -1);
+  int rows = 0;
+  for (const LoopPairing& p : refused) {
+    if (first_row[p.tree] >= 0) continue;
+    first_row[p.tree] = rows;
+    rows += static_cast<int>(trees[p.tree].S.rows());
+  }
+  Eigen::MatrixXd H = Eigen::MatrixXd::Zero(rows, ekf.dim());
+  for (std::size_t j = 0; j < trees.size(); ++j) {
+    if (first_row[j] < 0) continue;
+    const LoopTree& t = trees[j];
+    H.block(first_row[j], 0, t.J_x.rows(), t.J_x.cols()) = t.J_x;
+    H.block(first_row[j], t.landmark_offset, t.J_l.rows(), t.J_l.cols()) = t.J_l;
+  }
+  const Eigen::MatrixXd HPHt = H * (ekf.covarianceView() * H.transpose());
+  // Grow the set in order of NIS: the joint NIS of the innovations stacked, S from HPHt with
+  // each tree's own S (noise included) on the diagonal, plus the width terms of point
+  // landmarks compared on their predicted width (independent of the state).
+  std::vector<LoopPairing> set;
+  std::vector<char> sighting_in(seen.size(), 0), tree_in(trees.size(), 0);
+  for (LoopPairing& candidate : refused) {
+    if (sighting_in[candidate.sighting] || tree_in[candidate.tree]) continue;
+    set.push_back(std::move(candidate));
+    int n = 0, dof = 0;
+    double width_terms = 0.0;
+    for (const LoopPairing& p : set) {
+      const LoopTree& t = trees[p.tree];
+      n += static_cast<int>(t.S.rows());
+      dof += t.dof;
+      if (t.dof != t.S.rows()) {
+        const double dw = seen[p.sighting].z[2] - t.width_hat;
+        width_terms += dw * dw / t.width_variance;
+      }
+    }
+    Eigen::MatrixXd S(n, n);
+    Eigen::VectorXd nu(n);
+    for (std::size_t a = 0, ra = 0; a < set.size(); ra += trees[set[a].tree].S.rows(), ++a) {
+      const LoopTree& ta = trees[set[a].tree];
+      nu.segment(ra, ta.S.rows()) = set[a].nu;
+      for (std::size_t b = 0, rb = 0; b <= a; rb += trees[set[b].tree].S.rows(), ++b) {
+        const LoopTree& tb = trees[set[b].tree];
+        if (a == b) {
+          S.block(ra, ra, ta.S.rows(), ta.S.rows()) = ta.S;
+        } else {
+          S.block(ra, rb, ta.S.rows(), tb.S.rows()) =
+              HPHt.block(first_row[set[a].tree], first_row[set[b].tree], ta.S.rows(), tb.S.rows());
+          S.block(rb, ra, tb.S.rows(), ta.S.rows()) = S.block(ra, rb, ta.S.rows(), tb.S.rows()).transpose();
+        }
+      }
+    }
+    const Eigen::LLT<Eigen::MatrixXd> llt(S);
+    const bool compatible = llt.info() == Eigen::Success &&
+                            llt.matrixL().solve(nu).squaredNorm() + width_terms <
+                                chiSquareGate(dof, options_.association_gate_probability);
+    if (compatible) {
+      sighting_in[set.back().sighting] = 1;
+      tree_in[set.back().tree] = 1;
+    } else {
+      set.pop_back();
+    }
+  }
+  if (set.size() < static_cast<std::size_t>(options_.loop_pairings)) set.clear();
+  return set;
 }
 
 template <typename Camera>
@@ -326,6 +429,7 @@ void BasicMonocularTreeSlam<Camera>::removeUnconfirmed(FrameReport& report) {
   for (const Id id : unconfirmed) {
     ekf_.remove(id);
     sighted_.erase(id);
+    sightings_taken_.erase(id);
     appearance_.erase(id);
     true_anchor_.erase(id);
     ++report.removed;
