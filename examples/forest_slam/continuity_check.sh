@@ -12,10 +12,8 @@
 # Usage: continuity_check.sh FOREST_SLAM_BINARY
 set -euo pipefail
 bin="$1"
-tmp="$(mktemp -d "${TMPDIR:-/tmp}/forest_continuity.XXXXXX")"
-trap 'rm -rf "$tmp"' EXIT
 # shellcheck source=still_camera.sh
-source "$(dirname "${BASH_SOURCE[0]}")/still_camera.sh"
+source "$(dirname "${BASH_SOURCE[0]}")/still_camera.sh" forest_continuity
 header="# time_s, u_px, v_px, w_px"
 { echo "$header"; for k in $(seq 1 10); do echo "0.$((k - 1))1, 320, 300, 20"; done; } > "$tmp/centre.csv"
 { echo "$header"; for k in $(seq 1 10); do echo "0.$((k - 1))1, 12, 300, 20"; done; } > "$tmp/edge.csv"
@@ -25,7 +23,6 @@ header="# time_s, u_px, v_px, w_px"
     if ((k == 6 || k == 7)); then echo "0.$((k - 1))1, 500, 300, 20"; else echo "0.$((k - 1))1, 320, 300, 20"; fi
   done
 } > "$tmp/gap.csv"
-still_camera_files "$tmp"
 status=0
 expect() {  # case cost expected
   "$bin" --detections "$tmp/$1.csv" --camera "$tmp/camera.csv" --initial-state "$tmp/initial.csv" \

@@ -1,5 +1,7 @@
-# Shared by forest_slam's checks on hand-written detections (source it): a still camera at the
-# origin, and the number of trees a run added in each of the three pipelines.
+# Shared by forest_slam's checks on hand-written detections. `source still_camera.sh NAME`
+# makes a temporary folder $tmp (removed on exit) holding a still camera at the origin,
+# $tmp/camera.csv and $tmp/initial.csv, and defines expect_trees_added: the number of trees a
+# run added in each of the three pipelines.
 
 # still_camera_files DIR: DIR/camera.csv (640 x 480, f = 500 px) and DIR/initial.csv (at rest at
 # the origin, looking along z).
@@ -22,3 +24,7 @@ expect_trees_added() {
   done
   return "$failed"
 }
+
+tmp="$(mktemp -d "${TMPDIR:-/tmp}/$1.XXXXXX")"
+trap 'rm -rf "$tmp"' EXIT
+still_camera_files "$tmp"

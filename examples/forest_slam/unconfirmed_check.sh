@@ -6,10 +6,8 @@
 # Usage: unconfirmed_check.sh FOREST_SLAM_BINARY
 set -euo pipefail
 bin="$1"
-tmp="$(mktemp -d "${TMPDIR:-/tmp}/forest_unconfirmed.XXXXXX")"
-trap 'rm -rf "$tmp"' EXIT
 # shellcheck source=still_camera.sh
-source "$(dirname "${BASH_SOURCE[0]}")/still_camera.sh"
+source "$(dirname "${BASH_SOURCE[0]}")/still_camera.sh" forest_unconfirmed
 {
   echo "# time_s, u_px, v_px, w_px"
   for k in $(seq 1 10); do
@@ -17,7 +15,6 @@ source "$(dirname "${BASH_SOURCE[0]}")/still_camera.sh"
     if ((k == 2)); then echo "0.$((k - 1))1, 500, 300, 20"; fi
   done
 } > "$tmp/detections.csv"
-still_camera_files "$tmp"
 status=0
 expect() {  # expected_removed flags...
   local expected="$1"

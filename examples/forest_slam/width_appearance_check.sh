@@ -9,16 +9,13 @@
 # Usage: width_appearance_check.sh FOREST_SLAM_BINARY
 set -euo pipefail
 bin="$1"
-tmp="$(mktemp -d "${TMPDIR:-/tmp}/forest_width_appearance.XXXXXX")"
-trap 'rm -rf "$tmp"' EXIT
 # shellcheck source=still_camera.sh
-source "$(dirname "${BASH_SOURCE[0]}")/still_camera.sh"
+source "$(dirname "${BASH_SOURCE[0]}")/still_camera.sh" forest_width_appearance
 {
   echo "# time_s, u_px, v_px, w_px"
   for k in $(seq 1 10); do echo "0.$((k - 1))1, 320, 300, 20"; done
   for k in $(seq 1 5); do echo "1.$((k - 1))1, 320, 300, 40"; done
 } > "$tmp/detections.csv"
-still_camera_files "$tmp"
 for run in width uv; do
   flags=()
   [[ "$run" == uv ]] && flags=(--no-width-appearance)
