@@ -324,17 +324,6 @@ int main(int argc, char** argv) {
                  "--association nn: sightings a tree must have taken to count for --loop-pairings")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
-  app.add_option("--merge-gate", slam_options.merge_gate_probability,
-                 "--association nn: merge a tree mapped twice (two Euclidean landmarks never sighted in one frame, "
-                 "their difference within --merge-sigma and within the chi-square gate of this probability of zero; "
-                 "0: off)")
-      ->capture_default_str()
-      ->check(CLI::Range(0.0, 0.999999999));
-  app.add_option("--merge-sigma", slam_options.merge_sigma_m,
-                 "--association nn: the largest spread (m, square root of the covariance's trace) of the difference "
-                 "of two landmarks' positions that --merge-gate judges")
-      ->capture_default_str()
-      ->check(CLI::PositiveNumber);
   app.add_option("--unconfirmed-after", slam_options.unconfirmed_after_frames,
                  "remove a landmark that took fewer than --confirm-sightings sightings once this many frames pass "
                  "without one (0: never)")

@@ -488,14 +488,6 @@ class BasicEkf {
     return currentBlock<kRobotDim, Landmark::kDim>(0, s.offset);
   }
 
-  /// Cross-covariance between landmarks `a` (parametrized as `LandmarkA`) and `b` (`LandmarkB`).
-  template <typename LandmarkA, typename LandmarkB>
-  Mat<LandmarkA::kDim, LandmarkB::kDim> landmarkCrossCovariance(Id a, Id b) const {
-    const LandmarkSlot& sa = typedSlot<LandmarkA>(a, "landmarkCrossCovariance");
-    const LandmarkSlot& sb = typedSlot<LandmarkB>(b, "landmarkCrossCovariance");
-    return currentBlock<LandmarkA::kDim, LandmarkB::kDim>(sa.offset, sb.offset);
-  }
-
   /// Copy of the whole mean: the robot's state, then the landmark blocks. Its length is n
   /// (`dim()`) but for a robot on a manifold, whose state is kRobotStateDim - kRobotDim
   /// entries longer than its rows in the covariance.
@@ -990,49 +982,6 @@ class BasicEkf {
       cov_.swapBlocks(off, at, L);
       slots_.swapPositions(exchange_with, slots_.slots().size() - 1);
     }
-  }
-
-  /// Fuses a measurement of two landmarks that does not involve the robot, z = h(l_a, l_b) + v
-  /// with v ~ `noise`, given its innovation `nu` = z - h at the current estimate and h's
-  /// Jacobians `J_a`, `J_b` there (an ordinary EKF update whose H has only the two landmark
-  /// blocks). What it is for: two landmarks found to stand for one thing (a tree mapped again
-  /// after a loop) are merged by fusing h = (position of a) - (position of b) with z = 0 and a
-  /// small noise, then removing b; the robot and every other landmark are corrected through
-  /// their correlations, as by a loop closure.
-  /// Errors, the filter unchanged: an unknown id or a wrong type, a == b, a non-finite input
-  /// (kNonFinite), S not positive definite, a posterior out of a landmark's domain; with the
-  /// compressed EKF (setCompression), kInvalidArgument.
-  /// (M is taken from `nu`; the Jacobians may be any expressions of their sizes.)
-  template <typename LandmarkA, typename LandmarkB, int M>
-  void constrain(Id a, Id b, const Vec<M>& nu, const std::enable_if_t<true, Mat<M, LandmarkA::kDim>>& J_a,
-                 const std::enable_if_t<true, Mat<M, LandmarkB::kDim>>& J_b, const Gaussian<M>& noise) {
-    static_assert(kHolds<LandmarkA> && kHolds<LandmarkB>,
-                  "both parametrizations must be in the filter's Landmarks... list");
-    const LandmarkSlot sa = typedSlot<LandmarkA>(a, "Ekf::constrain");
-    const LandmarkSlot sb = typedSlot<LandmarkB>(b, "Ekf::constrain");
-    if (a == b) fail(ErrorCode::kInvalidArgument, "Ekf::constrain: landmark " + std::to_string(a) + " given twice");
-    if (compressed())
-      fail(ErrorCode::kInvalidArgument, "Ekf::constrain: not available with the compressed EKF (setCompression)");
-    if (!nu.allFinite() || !J_a.allFinite() || !J_b.allFinite())
-      fail(ErrorCode::kNonFinite, "Ekf::constrain: innovation or Jacobian is not finite (landmarks " +
-                                      std::to_string(a) + ", " + std::to_string(b) + ")");
-    constexpr int La = LandmarkA::kDim;
-    constexpr int Lb = LandmarkB::kDim;
-    auto PHt = workspaceMatrix<M>(0);
-    PHt.setZero();
-    cov_.template addLandmarkTimesHt<La>(J_a, sa.offset, PHt, 0);
-    cov_.template addLandmarkTimesHt<Lb>(J_b, sb.offset, PHt, 0);
-    Mat<M, M> S = J_a * PHt.template middleRows<La>(sa.offset) + J_b * PHt.template middleRows<Lb>(sb.offset) +
-                  noise.covariance();
-    S = (0.5 * (S + S.transpose())).eval();
-    const Eigen::LLT<Mat<M, M>> llt(S);
-    if (llt.info() != Eigen::Success || !S.allFinite())
-      fail(ErrorCode::kNotPositiveDefinite, "Ekf::constrain: innovation covariance S is not positive definite (landmarks " +
-                                                std::to_string(a) + ", " + std::to_string(b) + ")");
-    applyGain<M>(PHt, llt, nu, noise.covariance(), detail::CompressedUpdateTerms{}, [&](const auto& A, auto&& out) {
-      out.noalias() = A.template middleCols<La>(sa.offset) * J_a.transpose();
-      out.noalias() += A.template middleCols<Lb>(sb.offset) * J_b.transpose();
-    });
   }
 
   /// Removes landmark `id`: its rows and columns leave the state. O(n^2) (moves). With the

@@ -182,16 +182,8 @@ class LowerCovariance {
     dest.template topRows<R>().noalias() += block<R, R>(0, 0) * J_z_x.transpose();
     const int below_robot = n_ - R;
     dest.bottomRows(below_robot).noalias() += m_.block(R, 0, below_robot, R) * J_z_x.transpose();
-    addLandmarkTimesHt<L>(J_z_l, o, out, col0);
-  }
-
-  /// out(:, col0 .. col0 + M) += P H^T for the landmark block of H alone (J_z_l, L columns at
-  /// offset o): rows [0, o) from the transposed stored row block, rows [o, o + L) from the
-  /// diagonal block, rows [o + L, n) stored. O(n M).
-  template <int L, typename Jl, typename Out>
-  void addLandmarkTimesHt(const Jl& J_z_l, int o, Out& out, int col0) const {
-    constexpr int M = Jl::RowsAtCompileTime;
-    auto dest = out.template middleCols<M>(col0);
+    // Landmark columns of P at offset o: rows [0, o) are the transposed stored row block,
+    // rows [o, o + L) the diagonal block, rows [o + L, n) are stored.
     dest.topRows(o).noalias() += m_.block(o, 0, L, o).transpose() * J_z_l.transpose();
     dest.template middleRows<L>(o).noalias() += block<L, L>(o, o) * J_z_l.transpose();
     const int below = n_ - o - L;

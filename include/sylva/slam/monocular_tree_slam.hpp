@@ -194,17 +194,6 @@ struct TreeSlamOptions {
   /// least `loop_pairings` pairings. 0: off. Chosen on development forests (docs/slam.md).
   int loop_pairings = 3;
   int loop_sightings = 30;
-  /// kNearestNeighbor, duplicates: a tree mapped twice (after a loop the association missed
-  /// it, and a new landmark took its sightings) is merged once both of its landmarks are
-  /// Euclidean (XYZ or XYZ-R), the difference of their positions is certain to within
-  /// `merge_sigma_m` (the square root of its covariance's trace), zero lies within its
-  /// chi-square gate of probability `merge_gate_probability` (3 dof), and no frame has sighted
-  /// both (two trunks seen at once are two trees). A pair is merged only when neither landmark
-  /// has another such candidate. The merge fuses "the two positions are one" (Ekf::constrain,
-  /// with a noise of 1 mm) and removes the landmark that took fewer sightings: the map and the
-  /// camera are corrected as by a loop closure. 0: off.
-  double merge_gate_probability = 0.0;
-  double merge_sigma_m = 0.5;
   /// Map management: a landmark that has taken fewer than `confirm_sightings` sightings is
   /// removed once `unconfirmed_after_frames` frames pass without one (0: never). Such a
   /// landmark's depth is barely constrained, and where the life cycle has made it Euclidean it
@@ -239,7 +228,6 @@ struct FrameReport {
   int hypotheses = 0; ///< 1 when the frame was re-anchored on a one-point hypothesis
   int ambiguous = 0;  ///< kNearestNeighbor: sightings dropped, neither paired nor clearly new
   int removed = 0;    ///< landmarks removed unconfirmed (TreeSlamOptions::unconfirmed_after_frames)
-  int merged = 0;     ///< landmarks merged into another as duplicates (TreeSlamOptions::merge_gate_probability)
   /// Per sighting, in the order given: the landmark it was taken as (its own id with known
   /// ids; the paired or new tree's id without), or -1 when it was dropped as ambiguous.
   std::vector<Id> landmark_of;
@@ -450,14 +438,6 @@ class BasicMonocularTreeSlam {
   int frame_index_ = 0;
   /// Removes the landmarks that stay unconfirmed (TreeSlamOptions::unconfirmed_after_frames).
   void removeUnconfirmed(FrameReport& report);
-  /// kNearestNeighbor: the frames in which each landmark was sighted, in order (two landmarks
-  /// sighted in one frame are two trees).
-  std::unordered_map<Id, std::vector<int>> frames_sighted_;
-  /// Merges the duplicate landmarks of trees sighted in this frame
-  /// (TreeSlamOptions::merge_gate_probability).
-  void mergeDuplicates(FrameReport& report);
-  /// Moves `drop`'s bookkeeping (sightings, frames, appearance) to `keep`.
-  void mergeRecords(Id keep, Id drop);
   FrameProfile* profile_ = nullptr;
 };
 

@@ -4,10 +4,8 @@
 /// Include this file in one translation unit of a program and instantiate the class there;
 /// every other file includes monocular_tree_slam.hpp only (see its comment).
 
-#include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <iterator>
 #include <optional>
 #include <string>
 #include <tuple>
@@ -75,13 +73,6 @@ BasicMonocularTreeSlam<Camera>::BasicMonocularTreeSlam(const TreeSlamOptions& op
          "TreeSlamOptions: unconfirmed_after_frames must be >= 0 (0: never remove), got " +
              std::to_string(options.unconfirmed_after_frames) + ", and confirm_sightings >= 1, got " +
              std::to_string(options.confirm_sightings));
-  }
-  if (!(options.merge_gate_probability >= 0.0 && options.merge_gate_probability < 1.0) ||
-      !(options.merge_sigma_m > 0.0 && std::isfinite(options.merge_sigma_m))) {
-    fail(ErrorCode::kInvalidArgument,
-         "TreeSlamOptions: merge_gate_probability must be in [0, 1) (0: off), got " +
-             std::to_string(options.merge_gate_probability) + ", and merge_sigma_m positive and finite, got " +
-             std::to_string(options.merge_sigma_m));
   }
   ekf_.setLinearizationPoint(options.linearization);
   ekf_.setGaugeInverse(options.gauge_inverse);
@@ -185,9 +176,7 @@ FrameReport BasicMonocularTreeSlam<Camera>::processFrame(double dt,
       if (s.id >= 0) {
         sighted_last_frame_.insert(s.id);
         ++sightings_taken_[s.id];
-        if (ekf_.contains(s.id)) frames_sighted_[s.id].push_back(frame_index_);
       }
-    if (options_.merge_gate_probability > 0.0) mergeDuplicates(report);
   }
   return report;
 }
@@ -441,153 +430,10 @@ void BasicMonocularTreeSlam<Camera>::removeUnconfirmed(FrameReport& report) {
     ekf_.remove(id);
     sighted_.erase(id);
     sightings_taken_.erase(id);
-    frames_sighted_.erase(id);
     appearance_.erase(id);
     true_anchor_.erase(id);
     ++report.removed;
   }
-}
-
-template <typename Camera>
-void BasicMonocularTreeSlam<Camera>::mergeDuplicates(FrameReport& report) {
-  // The Euclidean landmarks: position, its marginal covariance, sightings taken.
-  struct Euclidean {
-    Id id;
-    Vec<3> p;
-    Mat<3, 3> P;
-    int sightings;
-    bool sighted_now;
-  };
-  std::vector<Euclidean> trees;
-  for (const LandmarkSlot& slot : ekf_.slots()) {
-    ekf_.visit(slot.id, [&](auto type) {
-      using Landmark = typename decltype(type)::type;
-      if constexpr (std::is_same_v<Landmark, Point3> || std::is_same_v<Landmark, TreeXYZR>) {
-        const auto taken = sightings_taken_.find(slot.id);
-        trees.push_back({slot.id, ekf_.template landmarkMean<Landmark>(slot.id).template head<3>(),
-                         ekf_.template landmarkCovariance<Landmark>(slot.id).template topLeftCorner<3, 3>(),
-                         taken == sightings_taken_.end() ? 0 : taken->second, sighted_last_frame_.count(slot.id) != 0});
-      }
-    });
-  }
-  // The position block of the cross-covariance of two Euclidean landmarks.
-  const auto crossPositions = [&](Id a, Id b) {
-    return ekf_.visit(a, [&](auto type_a) {
-      using A = typename decltype(type_a)::type;
-      return ekf_.visit(b, [&](auto type_b) -> Mat<3, 3> {
-        using B = typename decltype(type_b)::type;
-        constexpr bool euclidean = (std::is_same_v<A, Point3> || std::is_same_v<A, TreeXYZR>)&&(
-            std::is_same_v<B, Point3> || std::is_same_v<B, TreeXYZR>);
-        if constexpr (euclidean) {
-          return ekf_.template landmarkCrossCovariance<A, B>(a, b).template topLeftCorner<3, 3>();
-        } else {
-          return Mat<3, 3>::Zero();  // not called: both are Euclidean
-        }
-      });
-    });
-  };
-  const auto coSighted = [&](Id a, Id b) {
-    const std::vector<int>& fa = frames_sighted_[a];
-    const std::vector<int>& fb = frames_sighted_[b];
-    for (std::size_t i = 0, j = 0; i < fa.size() && j < fb.size();) {
-      if (fa[i] == fb[j]) return true;
-      (fa[i] < fb[j] ? i : j) += 1;
-    }
-    return false;
-  };
-  const double gate = chiSquareGate(3, options_.merge_gate_probability);
-  const double max_variance = options_.merge_sigma_m * options_.merge_sigma_m;
-  struct Pair {
-    double d2;
-    std::size_t a, b;
-  };
-  std::vector<Pair> pairs;
-  std::vector<int> candidates(trees.size(), 0);
-  for (std::size_t a = 0; a < trees.size(); ++a) {
-    if (!trees[a].sighted_now) continue;
-    for (std::size_t b = 0; b < trees.size(); ++b) {
-      if (b == a || trees[b].sighted_now) continue;  // both sighted now: two trees
-      const Vec<3> d = trees[a].p - trees[b].p;
-      // d^T C^-1 d >= |d|^2 / trace(C), and trace(C) <= (sqrt(trace P_a) + sqrt(trace P_b))^2.
-      const double spread = std::sqrt(trees[a].P.trace()) + std::sqrt(trees[b].P.trace());
-      if (d.squaredNorm() > gate * spread * spread) continue;
-      const Mat<3, 3> X = crossPositions(trees[a].id, trees[b].id);
-      const Mat<3, 3> C = trees[a].P + trees[b].P - X - X.transpose();
-      if (!(C.trace() < max_variance)) continue;
-      const Eigen::LLT<Mat<3, 3>> llt(C);
-      if (llt.info() != Eigen::Success) continue;
-      const double d2 = llt.matrixL().solve(d).squaredNorm();
-      if (!(d2 < gate) || coSighted(trees[a].id, trees[b].id)) continue;
-      pairs.push_back({d2, a, b});
-      ++candidates[a];
-      ++candidates[b];
-    }
-  }
-  for (const Pair& pair : pairs) {
-    if (candidates[pair.a] != 1 || candidates[pair.b] != 1) continue;  // ambiguous
-    const bool keep_a = trees[pair.a].sightings > trees[pair.b].sightings;
-    const Id keep = trees[keep_a ? pair.a : pair.b].id;
-    const Id drop = trees[keep_a ? pair.b : pair.a].id;
-    try {
-      ekf_.visit(keep, [&](auto type_keep) {
-        using K = typename decltype(type_keep)::type;
-        ekf_.visit(drop, [&](auto type_drop) {
-          using D = typename decltype(type_drop)::type;
-          constexpr bool euclidean = (std::is_same_v<K, Point3> || std::is_same_v<K, TreeXYZR>)&&(
-              std::is_same_v<D, Point3> || std::is_same_v<D, TreeXYZR>);
-          if constexpr (euclidean) {
-            // h = p_keep - p_drop, measured as 0.
-            Mat<3, K::kDim> J_keep = Mat<3, K::kDim>::Zero();
-            J_keep.template leftCols<3>().setIdentity();
-            Mat<3, D::kDim> J_drop = Mat<3, D::kDim>::Zero();
-            J_drop.template leftCols<3>() = -Mat<3, 3>::Identity();
-            const Vec<3> nu = ekf_.template landmarkMean<D>(drop).template head<3>() -
-                              ekf_.template landmarkMean<K>(keep).template head<3>();
-            ekf_.template constrain<K, D>(keep, drop, nu, J_keep, J_drop, Gaussian<3>::sigmas(Vec<3>::Constant(1e-3)));
-          }
-        });
-      });
-    } catch (const Error&) {
-      ++report.rejected;
-      continue;
-    }
-    ekf_.remove(drop);
-    mergeRecords(keep, drop);
-    ++report.merged;
-  }
-}
-
-template <typename Camera>
-void BasicMonocularTreeSlam<Camera>::mergeRecords(Id keep, Id drop) {
-  const auto take = [&](auto& map, auto&& combine) {
-    const auto from = map.find(drop);
-    if (from == map.end()) return;
-    const auto to = map.find(keep);
-    if (to == map.end()) {
-      map.emplace(keep, std::move(from->second));
-    } else {
-      combine(to->second, from->second);
-    }
-    map.erase(drop);
-  };
-  take(sightings_taken_, [](int& to, int from) { to += from; });
-  take(sighted_, [](Sighted& to, const Sighted& from) {
-    to.count += from.count;
-    to.last_frame = std::max(to.last_frame, from.last_frame);
-  });
-  take(frames_sighted_, [](std::vector<int>& to, const std::vector<int>& from) {
-    std::vector<int> both;
-    both.reserve(to.size() + from.size());
-    std::merge(to.begin(), to.end(), from.begin(), from.end(), std::back_inserter(both));
-    to.swap(both);
-  });
-  // The appearance of the latest sighting.
-  const bool drop_now = sighted_last_frame_.erase(drop) != 0;
-  if (drop_now) sighted_last_frame_.insert(keep);
-  take(appearance_, [&](Appearance& to, const Appearance& from) {
-    if (drop_now) to = from;
-  });
-  true_anchor_.erase(drop);
 }
 
 template <typename Camera>
