@@ -8,7 +8,8 @@ builds on, never of a folder that builds on it. Two rules, read from the #includ
      a third (a folder and its own `detail/` subfolder count as one).
   2. The generic filter stays generic: `filter/` (and `core/`, `detail/`, `diff/`, `noise/`)
      include nothing from the models (`motion/`, `landmarks/`, `measurements/`), from the
-     sensor front ends (`laser_camera/`, `laser/`) or from the SLAM layer (`slam/`).
+     sensor front ends (`laser_camera/`, `laser/`), from the parking controller (`parking/`) or
+     from the SLAM layer (`slam/`).
 
 An include of a header that does not exist is an error as well.
 
@@ -27,7 +28,7 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 INCLUDE_RE = re.compile(r'^\s*#\s*include\s*[<"](sylva/[^">]+)[">]', re.M)
 
 GENERIC = ["core", "detail", "diff", "noise", "filter"]
-SPECIFIC = ["motion", "landmarks", "measurements", "laser_camera", "laser", "slam"]
+SPECIFIC = ["motion", "landmarks", "measurements", "laser_camera", "laser", "parking", "slam"]
 
 
 def folder_of(rel):

@@ -23,12 +23,16 @@
 
 #include <sylva/core/angles.hpp>
 #include <sylva/motion/unicycle_2d.hpp>
+#include <sylva/parking/hybrid_controller.hpp>
 #include <sylva/sim/random.hpp>
 
-#include "controller.hpp"
 #include "station_camera.hpp"
 
 namespace parking {
+
+using namespace sylva::parking;  // the hybrid controller (include/sylva/parking)
+using sylva::kRadPerDeg;
+using sylva::parking::toString;  // of State and Event, beside toString(Outcome) below
 
 struct RobotParams {
   double max_accel_mps2 = 0.3;                ///< Pioneer 3-AT default, 300 mm/s^2

@@ -7,8 +7,9 @@
 //                           view, with the adaptive virtual edge and with two fixed ones
 //   --json                  one JSON object instead of text
 //
-// The controller (controller.hpp) sees only the measured feature positions; the simulator
-// (station_camera.hpp, episode.hpp) and the study (study.hpp) are separate headers. See
+// The controller (sylva::parking::HybridController, include/sylva/parking) sees only the
+// measured feature positions; the simulator (station_camera.hpp, episode.hpp) and the study
+// (study.hpp) are the example's own headers. See
 // docs/examples/parking.md for the model, the parameters and where they come from, and the
 // deviations from the printed algorithms. Same flags, same output, bit for bit.
 
@@ -24,7 +25,8 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
-#include "controller.hpp"
+#include <sylva/parking/hybrid_controller.hpp>
+
 #include "episode.hpp"
 #include "figures.hpp"
 #include "station_camera.hpp"

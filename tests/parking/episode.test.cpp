@@ -13,16 +13,16 @@
 
 namespace unity_parking_episode {
 
-using parking::CameraParams;
-using parking::ControllerParams;
-using parking::EpisodeOptions;
-using parking::EpisodeResult;
-using parking::Event;
-using parking::Outcome;
-using parking::Pose;
-using parking::RobotParams;
-using parking::State;
-using parking::StationCamera;
+using ::parking::CameraParams;
+using ::parking::ControllerParams;
+using ::parking::EpisodeOptions;
+using ::parking::EpisodeResult;
+using ::parking::Event;
+using ::parking::Outcome;
+using ::parking::Pose;
+using ::parking::RobotParams;
+using ::parking::State;
+using ::parking::StationCamera;
 using sylva::ErrorCode;
 using sylva_test::throwsCode;
 
@@ -39,7 +39,7 @@ EpisodeResult park(const Pose& start,
                    RobotParams robot = {}) {
   EpisodeOptions o;
   o.record = record;
-  return parking::runEpisode(StationCamera(cam), cp, robot, start, seed, o);
+  return ::parking::runEpisode(StationCamera(cam), cp, robot, start, seed, o);
 }
 
 /// Within the thesis' repeatability, +-4 cm lateral and +-0.5 cm along the axis.
@@ -82,7 +82,7 @@ TEST_CASE(
       CHECK(withinThesisRepeatability(r));
       // The first forward move holds the far feature: P3 on P3's side (x > 0), P1 otherwise.
       const auto first_forward =
-          std::find_if(r.samples.begin(), r.samples.end(), [](const parking::Sample& s) {
+          std::find_if(r.samples.begin(), r.samples.end(), [](const ::parking::Sample& s) {
             return s.state == State::kForward;
           });
       REQUIRE(first_forward != r.samples.end());
@@ -132,7 +132,7 @@ TEST_CASE("parking episode: time-out and bump are reported as such", "[parking]"
   o.max_time_s = 2.0;
   const StationCamera cam;
   const EpisodeResult slow =
-      parking::runEpisode(cam, ControllerParams{}, RobotParams{}, Pose(0.03, -1.0, 1.57), 1, o);
+      ::parking::runEpisode(cam, ControllerParams{}, RobotParams{}, Pose(0.03, -1.0, 1.57), 1, o);
   CHECK(slow.outcome == Outcome::kTimedOut);
   CHECK(slow.time_s == Approx(2.0).margin(0.06));
   RobotParams bumper;
@@ -165,17 +165,17 @@ TEST_CASE("parking episode: an ideal robot (no acceleration limits) parks as wel
 TEST_CASE("parking episode: bad inputs are refused", "[parking]") {
   const StationCamera cam;
   const Pose nan_start(std::numeric_limits<double>::quiet_NaN(), -1.0, 1.57);
-  CHECK(throwsCode([&] { parking::runEpisode(cam, {}, {}, nan_start, 1); }, ErrorCode::kNonFinite));
+  CHECK(throwsCode([&] { ::parking::runEpisode(cam, {}, {}, nan_start, 1); }, ErrorCode::kNonFinite));
   ControllerParams other_width;
   other_width.image_width_px = 1600.0;
-  CHECK(throwsCode([&] { parking::runEpisode(cam, other_width, {}, Pose(0, -1, 1.57), 1); },
+  CHECK(throwsCode([&] { ::parking::runEpisode(cam, other_width, {}, Pose(0, -1, 1.57), 1); },
                    ErrorCode::kInvalidArgument));
   RobotParams robot;
   robot.max_accel_mps2 = -1.0;
-  CHECK(throwsCode([&] { parking::runEpisode(cam, {}, robot, Pose(0, -1, 1.57), 1); },
+  CHECK(throwsCode([&] { ::parking::runEpisode(cam, {}, robot, Pose(0, -1, 1.57), 1); },
                    ErrorCode::kInvalidArgument));
   EpisodeOptions o;
   o.max_time_s = std::numeric_limits<double>::infinity();
-  CHECK(throwsCode([&] { parking::runEpisode(cam, {}, {}, Pose(0, -1, 1.57), 1, o); },
+  CHECK(throwsCode([&] { ::parking::runEpisode(cam, {}, {}, Pose(0, -1, 1.57), 1, o); },
                    ErrorCode::kInvalidArgument));
 }

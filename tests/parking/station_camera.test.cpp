@@ -12,9 +12,9 @@
 
 namespace unity_parking_station_camera {
 
-using parking::CameraParams;
-using parking::Pose;
-using parking::StationCamera;
+using ::parking::CameraParams;
+using ::parking::Pose;
+using ::parking::StationCamera;
 using sylva::ErrorCode;
 using sylva_test::throwsCode;
 
@@ -35,7 +35,7 @@ TEST_CASE("station camera: facing P2 on the axis, P2 is at the centre, P1 and P3
           "[parking]") {
   const StationCamera cam;
   const CameraParams& c = cam.params();
-  const parking::StationView v = cam.view(Pose(0.0, -1.0, kHalfPi));
+  const ::parking::StationView v = cam.view(Pose(0.0, -1.0, kHalfPi));
   REQUIRE(v.allVisible());
   const double half = c.focal_px * c.spacing_m / 1.0;  // f tan(beta), tan(beta) = d / r
   CHECK(v.u[1] == Approx(0.5 * c.image_width_px));
@@ -46,7 +46,7 @@ TEST_CASE("station camera: facing P2 on the axis, P2 is at the centre, P1 and P3
 TEST_CASE("station camera: eq. 5.3 matches a hand computation from an oblique pose", "[parking]") {
   const StationCamera cam;
   const Pose pose(0.23, -0.81, 1.75);
-  const parking::StationView v = cam.view(pose);
+  const ::parking::StationView v = cam.view(pose);
   REQUIRE(v.allVisible());
   for (int i = 0; i < 3; ++i)
     CHECK(v.u[static_cast<std::size_t>(i)] ==
@@ -56,11 +56,11 @@ TEST_CASE("station camera: eq. 5.3 matches a hand computation from an oblique po
 TEST_CASE("station camera: turning left (counter-clockwise) moves every feature right",
           "[parking]") {
   const StationCamera cam;
-  const parking::StationView a = cam.view(Pose(0.1, -0.9, kHalfPi));
-  const parking::StationView b = cam.view(Pose(0.1, -0.9, kHalfPi + 0.05));
+  const ::parking::StationView a = cam.view(Pose(0.1, -0.9, kHalfPi));
+  const ::parking::StationView b = cam.view(Pose(0.1, -0.9, kHalfPi + 0.05));
   for (std::size_t i = 0; i < 3; ++i) CHECK(b.u[i] > a.u[i]);
   // The half of the station nearer the robot looks wider: on P3's side, f2 > f1.
-  const parking::StationView side = cam.view(Pose(0.4, -0.8, std::atan2(0.8, -0.4)));
+  const ::parking::StationView side = cam.view(Pose(0.4, -0.8, std::atan2(0.8, -0.4)));
   CHECK(side.u[2] - side.u[1] > side.u[1] - side.u[0]);
 }
 
@@ -69,7 +69,7 @@ TEST_CASE("station camera: features behind, outside the image or seen from behin
   const StationCamera cam;
   CHECK_FALSE(cam.view(Pose(0.0, -1.0, -kHalfPi)).visible[1]);  // facing away
   // Turned 31.5 deg left: P2 and P3 fall beyond the right image edge, P1 is still seen.
-  const parking::StationView edge = cam.view(Pose(0.0, -1.0, kHalfPi + 0.55));
+  const ::parking::StationView edge = cam.view(Pose(0.0, -1.0, kHalfPi + 0.55));
   CHECK(edge.visible[0]);
   CHECK_FALSE(edge.visible[1]);
   CHECK_FALSE(edge.visible[2]);
@@ -82,7 +82,7 @@ TEST_CASE("station camera: the goal pose sees the reference exactly", "[parking]
   const StationCamera cam;
   const std::array<double, 3> reference{478.0, 695.0, 910.0};
   const Pose goal = cam.goalPose(reference);
-  const parking::StationView v = cam.view(goal);
+  const ::parking::StationView v = cam.view(goal);
   for (std::size_t i = 0; i < 3; ++i) CHECK(v.u[i] == Approx(reference[i]).margin(1e-6));
   // Table 5.2's reference is slightly lopsided (f1^r = 217 > f2^r = 215, u2^r one pixel left
   // of centre): the goal lies 1.6 cm on P1's side, 0.61 m away, 1.5 deg off straight ahead.
@@ -106,7 +106,7 @@ TEST_CASE("station camera: measured positions carry Gaussian pixel noise", "[par
   c.sigma_px = 0.0;
   const Pose pose(0.05, -0.9, 1.6);
   sylva::sim::Rng rng(11);
-  const parking::StationView truth = StationCamera(c).view(pose);
+  const ::parking::StationView truth = StationCamera(c).view(pose);
   const std::vector<double> exact = StationCamera(c).observe(pose, rng);
   REQUIRE(exact.size() == 3);
   for (std::size_t i = 0; i < 3; ++i) CHECK(exact[i] == truth.u[i]);

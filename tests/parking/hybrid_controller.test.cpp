@@ -9,15 +9,15 @@
 #include <vector>
 
 #include "error_helpers.hpp"
-#include "parking/controller.hpp"
+#include <sylva/parking/hybrid_controller.hpp>
 
 namespace unity_parking_controller {
 
-using parking::Command;
-using parking::ControllerParams;
-using parking::Event;
-using parking::HybridController;
-using parking::State;
+using sylva::parking::Command;
+using sylva::parking::ControllerParams;
+using sylva::parking::Event;
+using sylva::parking::HybridController;
+using sylva::parking::State;
 using sylva::ErrorCode;
 using sylva_test::throwsCode;
 
@@ -234,7 +234,7 @@ TEST_CASE("parking controller: Reverse hands over to Forward with eps5 below A_m
 TEST_CASE("parking controller: the parking condition is strict and checks every feature",
           "[parking]") {
   const HybridController c(oneFrameStart());
-  parking::StationImage image;
+  sylva::parking::StationImage image;
   image.u = {478.0, 695.0, 910.0};
   CHECK(c.parked(image));
   image.u = {479.49, 695.0, 911.49};
@@ -275,11 +275,11 @@ TEST_CASE("parking controller: eq. 5.9, c falls linearly with the asymmetry, cla
 
 TEST_CASE("parking controller: the asymmetry, raw or scaled to the reference", "[parking]") {
   ControllerParams p;
-  parking::StationImage reference;
+  sylva::parking::StationImage reference;
   reference.u = {478.0, 695.0, 910.0};
-  parking::StationImage twice;  // the reference at twice the size (half the distance)
+  sylva::parking::StationImage twice;  // the reference at twice the size (half the distance)
   twice.u = {695.0 - 434.0, 695.0, 695.0 + 430.0};
-  parking::StationImage far;  // smaller than A_min: scaled as if A = A_min
+  sylva::parking::StationImage far;  // smaller than A_min: scaled as if A = A_min
   far.u = {695.0 - 60.0, 695.0, 695.0 + 58.0};
   const HybridController scaled(p);
   CHECK(scaled.asymmetry(reference) == Approx(0.0).margin(1e-12));

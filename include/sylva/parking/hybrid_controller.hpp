@@ -1,73 +1,75 @@
 #pragma once
-// parking::HybridController: the image-based hybrid parking controller of Amarasinghe's
-// thesis (2008), Ch. 5. It reads the horizontal image positions of the parking station's
-// three features, one frame at a time, and returns the robot command (v, omega) and the
-// state of its finite state machine. It knows nothing of the simulator: on a real robot the
-// positions come from a blob detector and the command goes to the wheels.
-//
-// Image and sign conventions
-// --------------------------
-// u is measured in pixels from the left image edge, increasing to the right; W is the image
-// width. The features are P1, P2, P3 from left to right, u1 < u2 < u3 (a frame is sorted
-// before use). omega is counter-clockwise positive (sylva's convention), so turning left
-// (omega > 0) moves every feature to the right in the image (u grows).
-//
-//   e_i = u_i - u_i^r,   f1 = u2 - u1,   f2 = u3 - u2,   A = u3 - u1,   E_A = A - A^r
-//
-// The finite state machine (eq. 5.4, Fig. 5.5; Algorithms 5-8)
-// --------------------------------------------------------------
-//   Start    turn in place, omega = -k1 e2, until |e2| <= delta_u; then measure the
-//            station's asymmetry (from f1, f2), set the virtual edge c (eq. 5.9) and leave
-//            with eps1 -> Forward if E_A < 0 (the station looks smaller than the reference:
-//            too far), else eps2 -> Reverse.
-//   Forward  v = v_c. The side comes from the last Start: the nearer half of the station
-//            looks wider, so f1 < f2 means the robot is on P3's side of the axis and must
-//            turn towards it, which moves the station right: P3 is held at the right virtual
-//            edge, omega = k2 (W - c - u3). Otherwise P1 is held at the left one, omega =
-//            -k2 (u1 - c). It leaves with eps4 -> Start when the other (uncontrolled) outer
-//            feature comes within c of its edge (u1 <= c, resp. W - u3 <= c).
-//   Reverse  v = -v_r (v_slow near the goal: |E_A| < 25 px and a small asymmetry), omega =
-//            -k1 e2: straight back along the line through P2. Leaves with eps3 -> Stop when
-//            the parking condition (eq. 5.1) holds, with eps5 -> Forward when A < A_min.
-//   Stop     v = omega = 0 (terminal: parked).
-//   Lost     v = omega = 0 (terminal, not in the thesis): a frame showed fewer than three
-//            features, i.e. the station left the image. The thesis assumes this never happens.
-//
-// Virtual edge (eq. 5.9): c = c_max - k_c |asymmetry|, clamped to [c_min, c_max]. k_c stands
-// for the thesis' product k_s k. c_max must stay below min(u1^r, W - u3^r) (478 px for Table
-// 5.2), or a forward move could end before the station looks as large as the reference.
-//
-// Where this differs from the printed algorithms (docs/examples/parking.md has the evidence):
-//   * Algorithm 6 prints the loop conditions of its two branches swapped (each tests the
-//     feature that the branch controls, which would end the move as soon as the control
-//     converges); the text and Theorem 5.4.1 say the move ends on the uncontrolled feature.
-//   * Algorithm 7 prints "while (NOT A < A_min) OR parked"; the intent (and what is coded) is
-//     "while NOT (A < A_min) AND NOT parked".
-//   * scaled_asymmetry (default on): the side and c come from (f1 - f2) (A^r/A)^2 - (f1^r -
-//     f2^r) instead of the raw f1 - f2. The raw value grows as 1/r^2, and a forward move with
-//     a small c ends closer (A = W - 2c), so a small c measures a large |f1 - f2| and keeps c
-//     small: above a gain of about 5 the raw law locks into endless cycles. Scaled, it depends
-//     on the polar angle alone (what eq. 5.11 assumes), and relative to the reference it aims
-//     at the goal rather than at the symmetric view (Table 5.2's reference is lopsided by
-//     2 px). raw: scaled_asymmetry = false.
-//   * exit_on_width (default on): a forward move also ends when A >= W - 2c. This is the
-//     thesis' end point while the held feature sits on its edge (eq. 5.8); when the turn lags
-//     behind near the station the held feature slips past its edge, the thesis' test fires
-//     late, and the station can leave the image in the following Start turn.
-//   * start_exit_frames (default 5): Start measures over five aligned frames, not one (the
-//     "termination measurement" of Sec. 5.3.1), to average the pixel noise out of c.
-//   * parked_frames (default 1, as printed): eq. 5.1 may be asked of consecutive frames.
-//   * One transition per frame: the state entered on a frame computes its command from that
-//     frame, but its own exit test waits for the next frame (as a frame loop on a robot does).
-//   * omega is limited to +-max_omega (a real base has a top turn rate).
-// Gains: Table 5.2's 0.25 and 0.1 are read as deg/s per pixel (the unit Pioneer robots take
-// turn rates in); as rad/s per pixel the loop would be unstable at 19 frames per second.
-//
-// Bad input: a frame with a non-finite position throws sylva::Error(kNonFinite); a position
-// outside [0, W], more than three features or two features closer than min_feature_gap_px (a
-// duplicated blob) throws kInvalidArgument, and the controller is left as it was. Fewer than
-// three features is the defined "station lost" outcome. Parameters are checked on
-// construction (kInvalidArgument / kNonFinite with a sentence naming the parameter).
+/// @file
+/// sylva::parking::HybridController: the image-based hybrid parking controller of Amarasinghe's
+/// thesis (2008), Ch. 5. It reads the horizontal image positions of the parking station's
+/// three features, one frame at a time, and returns the robot command (v, omega) and the
+/// state of its finite state machine. It knows nothing of the simulator: on a real robot the
+/// positions come from a blob detector and the command goes to the wheels.
+///
+/// Image and sign conventions
+/// --------------------------
+/// u is measured in pixels from the left image edge, increasing to the right; W is the image
+/// width. The features are P1, P2, P3 from left to right, u1 < u2 < u3 (a frame is sorted
+/// before use). omega is counter-clockwise positive (sylva's convention), so turning left
+/// (omega > 0) moves every feature to the right in the image (u grows).
+///
+///   e_i = u_i - u_i^r,   f1 = u2 - u1,   f2 = u3 - u2,   A = u3 - u1,   E_A = A - A^r
+///
+/// The finite state machine (eq. 5.4, Fig. 5.5; Algorithms 5-8)
+/// --------------------------------------------------------------
+///   Start    turn in place, omega = -k1 e2, until |e2| <= delta_u; then measure the
+///            station's asymmetry (from f1, f2), set the virtual edge c (eq. 5.9) and leave
+///            with eps1 -> Forward if E_A < 0 (the station looks smaller than the reference:
+///            too far), else eps2 -> Reverse.
+///   Forward  v = v_c. The side comes from the last Start: the nearer half of the station
+///            looks wider, so f1 < f2 means the robot is on P3's side of the axis and must
+///            turn towards it, which moves the station right: P3 is held at the right virtual
+///            edge, omega = k2 (W - c - u3). Otherwise P1 is held at the left one, omega =
+///            -k2 (u1 - c). It leaves with eps4 -> Start when the other (uncontrolled) outer
+///            feature comes within c of its edge (u1 <= c, resp. W - u3 <= c).
+///   Reverse  v = -v_r (v_slow near the goal: |E_A| < 25 px and a small asymmetry), omega =
+///            -k1 e2: straight back along the line through P2. Leaves with eps3 -> Stop when
+///            the parking condition (eq. 5.1) holds, with eps5 -> Forward when A < A_min.
+///   Stop     v = omega = 0 (terminal: parked).
+///   Lost     v = omega = 0 (terminal, not in the thesis): a frame showed fewer than three
+///            features, i.e. the station left the image. The thesis assumes this never happens.
+///
+/// Virtual edge (eq. 5.9): c = c_max - k_c |asymmetry|, clamped to [c_min, c_max]. k_c stands
+/// for the thesis' product k_s k. c_max must stay below min(u1^r, W - u3^r) (478 px for Table
+/// 5.2), or a forward move could end before the station looks as large as the reference.
+///
+/// Where this differs from the printed algorithms (docs/examples/parking.md has the evidence;
+/// examples/parking runs it in closed loop with a simulated camera):
+///   * Algorithm 6 prints the loop conditions of its two branches swapped (each tests the
+///     feature that the branch controls, which would end the move as soon as the control
+///     converges); the text and Theorem 5.4.1 say the move ends on the uncontrolled feature.
+///   * Algorithm 7 prints "while (NOT A < A_min) OR parked"; the intent (and what is coded) is
+///     "while NOT (A < A_min) AND NOT parked".
+///   * scaled_asymmetry (default on): the side and c come from (f1 - f2) (A^r/A)^2 - (f1^r -
+///     f2^r) instead of the raw f1 - f2. The raw value grows as 1/r^2, and a forward move with
+///     a small c ends closer (A = W - 2c), so a small c measures a large |f1 - f2| and keeps c
+///     small: above a gain of about 5 the raw law locks into endless cycles. Scaled, it depends
+///     on the polar angle alone (what eq. 5.11 assumes), and relative to the reference it aims
+///     at the goal rather than at the symmetric view (Table 5.2's reference is lopsided by
+///     2 px). raw: scaled_asymmetry = false.
+///   * exit_on_width (default on): a forward move also ends when A >= W - 2c. This is the
+///     thesis' end point while the held feature sits on its edge (eq. 5.8); when the turn lags
+///     behind near the station the held feature slips past its edge, the thesis' test fires
+///     late, and the station can leave the image in the following Start turn.
+///   * start_exit_frames (default 5): Start measures over five aligned frames, not one (the
+///     "termination measurement" of Sec. 5.3.1), to average the pixel noise out of c.
+///   * parked_frames (default 1, as printed): eq. 5.1 may be asked of consecutive frames.
+///   * One transition per frame: the state entered on a frame computes its command from that
+///     frame, but its own exit test waits for the next frame (as a frame loop on a robot does).
+///   * omega is limited to +-max_omega (a real base has a top turn rate).
+/// Gains: Table 5.2's 0.25 and 0.1 are read as deg/s per pixel (the unit Pioneer robots take
+/// turn rates in); as rad/s per pixel the loop would be unstable at 19 frames per second.
+///
+/// Bad input: a frame with a non-finite position throws sylva::Error(kNonFinite); a position
+/// outside [0, W], more than three features or two features closer than min_feature_gap_px (a
+/// duplicated blob) throws kInvalidArgument, and the controller is left as it was. Fewer than
+/// three features is the defined "station lost" outcome. Parameters are checked on
+/// construction (kInvalidArgument / kNonFinite with a sentence naming the parameter).
 
 #include <algorithm>
 #include <array>
@@ -77,12 +79,10 @@
 #include <string>
 #include <vector>
 
-#include <sylva/core/angles.hpp>
-#include <sylva/core/error.hpp>
+#include "sylva/core/angles.hpp"
+#include "sylva/core/error.hpp"
 
-namespace parking {
-
-using sylva::kRadPerDeg;
+namespace sylva::parking {
 
 enum class State { kStart, kForward, kReverse, kStop, kLost };
 
@@ -537,4 +537,4 @@ class HybridController {
   std::vector<Transition> transitions_;
 };
 
-}  // namespace parking
+}  // namespace sylva::parking
