@@ -34,7 +34,7 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
-#include "../range_bearing_slam/svg_map.hpp"
+#include "../common/planar_map_svg.hpp"
 #include "run.hpp"
 #include "sigma_plot.hpp"
 #include "../common/report.hpp"
@@ -81,7 +81,7 @@ void writePictures(const std::string& prefix, const Simulation& sim, const std::
   writeSigmaPlot(prefix + "sigma.svg", "Robot pose error and 3-sigma bounds", series);
 
   const VariantResult& fused = results[2];
-  range_bearing_slam::SvgMapData map;
+  sylva_examples::SvgMapData map;
   map.title = "laser_camera_slam: fused landmarks (laser corners + laser-camera)";
   map.subtitle_lines = {"walls grey; true vertical edges that cross the laser plane as crosses, posters excluded; "
                         "estimated landmarks with 2-sigma ellipses",
@@ -117,7 +117,7 @@ void writePictures(const std::string& prefix, const Simulation& sim, const std::
   map.final_position_covariance.diagonal() = fused.records.back().sigma.head<2>().cwiseAbs2();
   map.sensor_range_fov = Vec<2>(8.0, 30.0 * kRadPerDeg);
   for (const auto& s : sim.world.walls.segments()) map.walls.push_back({s.a, s.b});
-  range_bearing_slam::writeSvgMap(prefix + "map.svg", map);
+  sylva_examples::writeSvgMap(prefix + "map.svg", map);
 }
 
 int run(const Options& o, int seeds, bool json, const std::string& svg_prefix) {

@@ -109,8 +109,8 @@
 #include <sylva/slam/front_end.hpp>
 #include <sylva/slam/reach.hpp>
 
-#include "svg_map.hpp"
 #include "../common/cli_checks.hpp"
+#include "../common/planar_map_svg.hpp"
 #include "../common/report.hpp"
 #include "../common/text.hpp"
 
@@ -191,7 +191,7 @@ struct RunResult {
   double landmark_squared_error_sum = 0.0;
   int landmarks_mapped = 0;
   AssociationStats association;
-  range_bearing_slam::SvgMapData map;  // filled for the first run only
+  sylva_examples::SvgMapData map;  // filled for the first run only
 };
 
 World makeWorld(const Options& o) {
@@ -363,7 +363,7 @@ int run(const Options& o) {
   double landmark_squared_error = 0.0;
   long long landmarks_mapped = 0;
   AssociationStats association;
-  range_bearing_slam::SvgMapData map;
+  sylva_examples::SvgMapData map;
   for (int run_index = 0; run_index < o.runs; ++run_index) {
     RunResult r = runOnce(world, o, run_index, stats);
     final_position_error += r.final_position_error_m;
@@ -426,7 +426,7 @@ int run(const Options& o) {
           << " deg, sigma_v " << fixed(o.sigma_v_mps * 100, 1) << " cm/s, sigma_w "
           << fixed(o.sigma_omega_degps, 2) << " deg/s";
     map.subtitle_lines = {line1.str(), line2.str()};
-    range_bearing_slam::writeSvgMap(o.svg, map);
+    sylva_examples::writeSvgMap(o.svg, map);
   }
 
   nlohmann::json j;

@@ -38,7 +38,7 @@
 #include "../common/cli_checks.hpp"
 #include "../common/report.hpp"
 #include "../common/text.hpp"
-#include "../range_bearing_slam/svg_map.hpp"
+#include "../common/planar_map_svg.hpp"
 #include "evaluation.hpp"
 #include "fit.hpp"
 #include "residuals.hpp"
@@ -178,7 +178,7 @@ void writeSvg(const std::string& file,
               const RobotReport& r,
               const utias::GroundTruth& gt,
               const std::vector<sylva::datasets::UtiasLandmark>& truth) {
-  range_bearing_slam::SvgMapData m;
+  sylva_examples::SvgMapData m;
   const auto& run = r.known;
   const std::size_t n = run.samples.size();
   const std::size_t stride = std::max<std::size_t>(1, n / 2000);
@@ -206,7 +206,7 @@ void writeSvg(const std::string& file,
       "after aligning the map: trajectory RMS " + fixed(k.aligned_rmse_m, 3) + " m, landmark RMS " +
           fixed(k.landmark_aligned_rmse_m, 3) + " m; with JCBB instead of barcodes: trajectory " +
           fixed(j.aligned_rmse_m, 3) + " m, " + std::to_string(j.landmarks_mapped) + " landmarks"};
-  range_bearing_slam::writeSvgMap(file, m);
+  sylva_examples::writeSvgMap(file, m);
 }
 
 int noiseStudy(const Options& o, const sylva::datasets::UtiasDataset& data) {

@@ -1,6 +1,5 @@
 #pragma once
-// The SVG map of one 2D SLAM run (range_bearing_slam; laser_camera_slam and utias draw theirs
-// with it too): true and estimated landmarks (with 2-sigma ellipses), the true, estimated and
+// The SVG map of one 2D SLAM run, as range_bearing_slam, laser_camera_slam and utias draw it: true and estimated landmarks (with 2-sigma ellipses), the true, estimated and
 // odometry-only paths, the sensor's reach at the final pose, a legend, and an enlarged inset
 // where the ellipses are largest. The drawing helpers are in examples/common/svg_plot.hpp.
 
@@ -13,35 +12,32 @@
 #include <sylva/core/angles.hpp>
 #include <sylva/core/types.hpp>
 
-#include "../common/svg_plot.hpp"
+#include "svg_plot.hpp"
 
-namespace range_bearing_slam {
-
-using sylva::Mat;
-using sylva::Vec;
+namespace sylva_examples {
 
 struct SvgMapData {
   std::string title;
   std::vector<std::string> subtitle_lines;
-  std::vector<Vec<2>> true_path;
-  std::vector<Vec<2>> estimated_path;
-  std::vector<Vec<2>> odometry_path;
-  std::vector<Vec<2>> true_landmarks;
+  std::vector<sylva::Vec<2>> true_path;
+  std::vector<sylva::Vec<2>> estimated_path;
+  std::vector<sylva::Vec<2>> odometry_path;
+  std::vector<sylva::Vec<2>> true_landmarks;
   std::vector<bool> true_landmark_mapped;  ///< parallel to true_landmarks
   struct Estimate {
-    Vec<2> mean;
-    Mat<2, 2> covariance;
+    sylva::Vec<2> mean;
+    sylva::Mat<2, 2> covariance;
   };
   std::vector<Estimate> estimated_landmarks;
-  Vec<3> start_pose;
-  Vec<3> true_final_pose;
-  Vec<3> estimated_final_pose;
-  Mat<2, 2> final_position_covariance;
-  Vec<2> sensor_range_fov;  ///< [max range m, half angle rad], drawn at the final pose
-  std::vector<std::pair<Vec<2>, Vec<2>>> walls;  ///< optional wall segments, drawn grey
+  sylva::Vec<3> start_pose;
+  sylva::Vec<3> true_final_pose;
+  sylva::Vec<3> estimated_final_pose;
+  sylva::Mat<2, 2> final_position_covariance;
+  sylva::Vec<2> sensor_range_fov;  ///< [max range m, half angle rad], drawn at the final pose
+  std::vector<std::pair<sylva::Vec<2>, sylva::Vec<2>>> walls;  ///< optional wall segments, drawn grey
 };
 
-namespace detail {
+namespace planar_map_detail {
 
 namespace svg = sylva_examples::svg;
 
@@ -61,14 +57,14 @@ constexpr const char* kEstimatedRobot = "fill=\"#1f6fd1\" fill-opacity=\"0.8\"";
 
 /// The centre of the inset: the patch of estimated landmarks (within `half_m` - 0.5 of one
 /// of them) whose ellipses are largest, weighted by their size; the final pose without any.
-inline Vec<2> insetFocus(const SvgMapData& d, double half_m) {
-  Vec<2> focus = d.true_final_pose.head<2>();
+inline sylva::Vec<2> insetFocus(const SvgMapData& d, double half_m) {
+  sylva::Vec<2> focus = d.true_final_pose.head<2>();
   double best = -1.0;
   for (const auto& a : d.estimated_landmarks) {
-    Vec<2> sum = Vec<2>::Zero();
+    sylva::Vec<2> sum = sylva::Vec<2>::Zero();
     double weight = 0.0;
     for (const auto& b : d.estimated_landmarks) {
-      const Vec<2> delta = (b.mean - a.mean).cwiseAbs();
+      const sylva::Vec<2> delta = (b.mean - a.mean).cwiseAbs();
       if (delta.x() < half_m - 0.5 && delta.y() < half_m - 0.5) {
         const double size = std::sqrt(std::max(0.0, b.covariance.trace()));
         sum += size * b.mean;
@@ -86,9 +82,9 @@ inline Vec<2> insetFocus(const SvgMapData& d, double half_m) {
 /// The sensor's range and field of view at the true final pose, as a wedge.
 inline void drawReach(svg::Document& doc, const svg::Frame& f, const SvgMapData& d) {
   const double r = d.sensor_range_fov[0], half = d.sensor_range_fov[1];
-  const Vec<3>& p = d.true_final_pose;
-  const Vec<2> a = p.head<2>() + r * Vec<2>(std::cos(p[2] - half), std::sin(p[2] - half));
-  const Vec<2> b = p.head<2>() + r * Vec<2>(std::cos(p[2] + half), std::sin(p[2] + half));
+  const sylva::Vec<3>& p = d.true_final_pose;
+  const sylva::Vec<2> a = p.head<2>() + r * sylva::Vec<2>(std::cos(p[2] - half), std::sin(p[2] - half));
+  const sylva::Vec<2> b = p.head<2>() + r * sylva::Vec<2>(std::cos(p[2] + half), std::sin(p[2] + half));
   const std::string radius = doc.n(r * f.xScale());
   doc.path("M" + doc.n(f.px(p[0])) + " " + doc.n(f.py(p[1])) + "L" + doc.n(f.px(a.x())) + " " +
                doc.n(f.py(a.y())) + "A" + radius + " " + radius + " 0 " +
@@ -124,15 +120,15 @@ inline void drawRun(svg::Document& doc, const svg::Frame& f, const SvgMapData& d
     doc.arrow(f.px(pose[0]), f.py(pose[1]), pose[2], 9.0 * marker, style);
 }
 
-}  // namespace detail
+}  // namespace planar_map_detail
 
 /// Writes the map to `file`. Throws sylva::Error (kInvalidArgument) if it cannot be written.
 inline void writeSvgMap(const std::string& file, const SvgMapData& d) {
   namespace svg = sylva_examples::svg;
-  using namespace detail;
+  using namespace planar_map_detail;
   svg::Box world;
   for (const auto* set : {&d.true_path, &d.estimated_path, &d.odometry_path, &d.true_landmarks})
-    for (const Vec<2>& p : *set) world.include(p);
+    for (const sylva::Vec<2>& p : *set) world.include(p);
   for (const auto& e : d.estimated_landmarks) world.include(e.mean);
   world = world.grown(2.0);
 
@@ -145,7 +141,7 @@ inline void writeSvgMap(const std::string& file, const SvgMapData& d) {
 
   // The main map: axes, the run clipped to the frame, the start, the inset's window, a scale bar.
   const double inset_half_m = 2.5;
-  const Vec<2> focus = insetFocus(d, inset_half_m);
+  const sylva::Vec<2> focus = insetFocus(d, inset_half_m);
   const svg::Box inset_world{focus.x() - inset_half_m,
                              focus.y() - inset_half_m,
                              focus.x() + inset_half_m,
@@ -214,4 +210,4 @@ inline void writeSvgMap(const std::string& file, const SvgMapData& d) {
   doc.write(file);
 }
 
-}  // namespace range_bearing_slam
+}  // namespace sylva_examples
