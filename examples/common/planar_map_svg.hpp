@@ -96,11 +96,7 @@ inline void drawReach(svg::Document& doc, const svg::Frame& f, const SvgMapData&
 /// Walls, paths, landmarks and the final poses in one frame; `marker` scales the symbols.
 inline void drawRun(svg::Document& doc, const svg::Frame& f, const SvgMapData& d, double marker) {
   for (const auto& [a, b] : d.walls)
-    doc.line(f.px(a.x()),
-             f.py(a.y()),
-             f.px(b.x()),
-             f.py(b.y()),
-             "stroke=\"#9a9a9a\" stroke-width=\"3\"");
+    doc.segment(f, a, b, "stroke=\"#9a9a9a\" stroke-width=\"3\"");
   doc.polyline(f, d.odometry_path, "class=\"odopath\"");
   doc.polyline(f, d.true_path, "class=\"truepath\"");
   doc.polyline(f, d.estimated_path, "class=\"estpath\"");

@@ -181,6 +181,11 @@ class Document {
     polygon({corner(1.0, 0.0), corner(-0.6, 0.5), corner(-0.6, -0.5)}, attrs);
   }
 
+  /// A straight segment between two world points.
+  void segment(const Frame& f, const Point& a, const Point& b, const std::string& attrs) {
+    line(f.px(a.x()), f.py(a.y()), f.px(b.x()), f.py(b.y()), attrs);
+  }
+
   /// A polyline through world points; a non-finite point breaks it into pieces.
   void polyline(const Frame& f, const std::vector<Point>& points, const std::string& attrs) {
     std::vector<Point> piece;

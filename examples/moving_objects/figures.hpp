@@ -194,11 +194,7 @@ inline void writeSlamSvg(const std::string& path, const SlamFigure& f) {
     doc.text(v.left, top - 10, p.title, "font-size=\"13\" font-weight=\"bold\"");
     plot::axes(doc, v, {"", "", 2.0, 2.0});
     for (const auto& [a, b] : f.routes)
-      doc.line(v.px(a.x()),
-               v.py(a.y()),
-               v.px(b.x()),
-               v.py(b.y()),
-               "stroke=\"#f4a261\" stroke-width=\"5\" stroke-opacity=\"0.35\"");
+      doc.segment(v, a, b, "stroke=\"#f4a261\" stroke-width=\"5\" stroke-opacity=\"0.35\"");
     doc.polyline(v, f.true_path, "stroke=\"#111\" stroke-width=\"1.2\"");
     doc.polyline(
         v, p.estimated_path, "stroke=\"#1d4ed8\" stroke-width=\"1.2\" stroke-dasharray=\"4,3\"");
